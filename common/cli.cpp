@@ -1,0 +1,94 @@
+#include "common/cli.hpp"
+
+#include "common/error.hpp"
+#include "common/version.hpp"
+
+#include <fmt/format.h>
+
+#include <iostream>
+
+namespace aniso::cli {
+namespace {
+
+std::string rank_tag(const mpi::Comm& comm) {
+  return comm.size() > 1 ? fmt::format(" (rank {})", comm.rank()) : std::string();
+}
+
+} // namespace
+
+void add_common_options(CLI::App& app, CommonOptions& options, const std::string& program) {
+  app.add_option("--config", options.config_path, "TOML configuration file (defaults apply to missing keys)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--set", options.overrides, "override one config key, e.g. --set dem.seed=7 (repeatable)")
+      ->type_name("KEY=VALUE");
+  app.add_flag("--print-config", options.print_config,
+               "print the effective configuration (every key, default, unit and range) and exit");
+  app.add_flag("--dry-run", options.dry_run, "validate the configuration and input files, then exit");
+  app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+  app.set_version_flag("--version", fmt::format("{} {} (git {})", program, version_string, git_hash));
+}
+
+std::optional<int> parse(CLI::App& app, int argc, char** argv, const mpi::Comm& comm) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // CLI11 prints help/version on stdout and errors on stderr; only rank 0 speaks.
+    if (comm.is_root()) {
+      const int cli_code = app.exit(error);
+      return cli_code == 0 ? 0 : static_cast<int>(ExitCode::bad_input);
+    }
+    return error.get_exit_code() == 0 ? 0 : static_cast<int>(ExitCode::bad_input);
+  }
+  return std::nullopt;
+}
+
+ConfigSource load_config(const CommonOptions& options) {
+  ConfigSource source;
+  if (!options.config_path.empty()) {
+    source.table = config::load_file(options.config_path);
+    source.name = "'" + options.config_path + "'";
+  } else {
+    source.name = "defaults";
+  }
+  for (const auto& assignment : options.overrides) config::apply_override(source.table, assignment);
+  if (!options.overrides.empty()) source.name += " with --set overrides";
+  return source;
+}
+
+bool finish_config(const config::Reader& reader, const CommonOptions& options, const mpi::Comm& comm) {
+  reader.reject_unknown();
+  if (options.print_config) {
+    if (comm.is_root()) std::cout << reader.effective_toml() << std::flush;
+    return true;
+  }
+  return false;
+}
+
+std::string join_command_line(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  return line;
+}
+
+int run(int argc, char** argv, const std::string& program,
+        const std::function<int(int argc, char** argv, const mpi::Comm& comm)>& body) {
+  mpi::Environment environment(argc, argv);
+  const mpi::Comm comm = mpi::Comm::world();
+  int code = 0;
+  try {
+    code = body(argc, argv, comm);
+  } catch (const Error& error) {
+    code = static_cast<int>(error.code());
+    std::cerr << program << rank_tag(comm) << ": error (" << exit_code_name(error.code()) << "): " << error.what()
+              << std::endl;
+  } catch (const std::exception& error) {
+    code = static_cast<int>(ExitCode::internal_error);
+    std::cerr << program << rank_tag(comm) << ": internal error: " << error.what() << std::endl;
+  }
+  // An error seen by some ranks only must not leave the others waiting in a collective.
+  if (code != 0 && comm.size() > 1) MPI_Abort(MPI_COMM_WORLD, code);
+  return code;
+}
+
+} // namespace aniso::cli

@@ -1,0 +1,100 @@
+#pragma once
+// The DEM checkpoint, schema version 1: everything needed to continue a run
+// bit for bit (DESIGN.md "Data formats"). On disk the layout is documented in
+// docs/formats/checkpoint.md. Particles are stored in id order (row = id) and
+// contacts in (id_i, id_j) order, whatever the number of ranks that wrote them,
+// so that files written by 1 or N ranks hold the same data.
+
+#include "common/h5/provenance.hpp"
+#include "common/mpi.hpp"
+#include "common/tensor.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aniso::h5 {
+
+inline constexpr std::int64_t checkpoint_schema_version = 1;
+
+/// How one axis of the periodic cell is driven.
+enum class AxisMode : std::uint8_t { strain_rate = 0, stress = 1 };
+
+/// Cell geometry and the state of its controller.
+struct CellState {
+  Vec3 lengths = Vec3::Ones();           ///< current lengths [m]
+  Vec3 reference_lengths = Vec3::Ones(); ///< lengths at zero strain [m]
+  Vec3 strain_rate = Vec3::Zero();       ///< current rate dL/dt / L per axis [1/s]
+  std::array<AxisMode, 3> mode{AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::strain_rate};
+  Vec3 target = Vec3::Zero();  ///< per axis: strain rate [1/s] (strain_rate mode) or stress [Pa] (stress mode)
+  bool hold_mean_stress = false; ///< stress-mode axes together hold p = mean_stress_target
+  double mean_stress_target = 0; ///< [Pa], compression positive
+  Vec3 servo_state = Vec3::Zero(); ///< controller memory (integral terms) per axis
+};
+
+/// A named scalar parameter with its unit, stored as an attribute of /parameters.
+struct Parameter {
+  std::string name;
+  double value = 0;
+  std::string unit;
+};
+
+/// Particles held by this rank (structure of arrays; all vectors have the same length).
+struct ParticleRows {
+  std::vector<std::uint64_t> id;         ///< 0 .. N-1 over all ranks, each exactly once
+  std::vector<double> diameter;          ///< mid-plane diameter [m]
+  std::vector<double> aspect_ratio;      ///< axial height / mid-plane diameter; 1 = sphere
+  std::vector<double> mass;              ///< [kg]
+  std::vector<Vec3> inertia;             ///< principal moments in the body frame, axis of revolution = z [kg m^2]
+  std::vector<Vec3> position;            ///< [m], inside the cell
+  std::vector<Quat> orientation;         ///< body to world rotation, unit quaternion (w, x, y, z on disk)
+  std::vector<Vec3> velocity;            ///< [m/s]
+  std::vector<Vec3> angular_velocity;    ///< world frame [rad/s]
+  std::vector<Vec3> force;               ///< total force at the stored step [N]
+  std::vector<Vec3> torque;              ///< total torque at the stored step, world frame [N m]
+
+  [[nodiscard]] std::size_t size() const { return id.size(); }
+  void resize(std::size_t n);
+};
+
+/// Contacts held by this rank, id_i < id_j; history included.
+struct ContactRows {
+  std::vector<std::array<std::uint64_t, 2>> particles; ///< (id_i, id_j), id_i < id_j
+  std::vector<Vec3i> image_shift;        ///< periodic image of j relative to i, in cell lengths
+  std::vector<Vec3> normal;              ///< unit normal pointing from i to j
+  std::vector<Vec3> point;               ///< contact point [m], wrapped into the cell
+  std::vector<double> overlap;           ///< normal overlap [m], > 0
+  std::vector<Vec3> force;               ///< force on i from j [N]
+  std::vector<Vec3> tangential_spring;   ///< accumulated tangential displacement [m]
+  std::vector<std::uint8_t> sliding;     ///< 1 if at the Coulomb limit at the stored step
+
+  [[nodiscard]] std::size_t size() const { return particles.size(); }
+  void resize(std::size_t n);
+};
+
+/// The complete state of a DEM run at one step.
+struct Checkpoint {
+  double time = 0;         ///< simulated time [s]
+  std::int64_t step = 0;   ///< time steps taken
+  double time_step = 0;    ///< [s]
+  CellState cell;
+  ParticleRows particles;  ///< this rank's rows (all rows after read)
+  ContactRows contacts;    ///< this rank's rows (all rows after read)
+  std::vector<Parameter> parameters;                  ///< material and run parameters
+  std::vector<std::array<std::uint64_t, 4>> rng_state; ///< every random stream's state
+};
+
+/// Writes a checkpoint atomically (temporary name, flush, rename), collectively on `comm`.
+/// Each rank passes the rows it holds; together the particle ids must be 0..N-1 exactly once.
+void write_checkpoint(const std::string& path, const Checkpoint& local, const Provenance& provenance,
+                      const mpi::Comm& comm);
+
+/// Reads and validates a checkpoint; every rank receives all rows. Throws FileError naming
+/// the file and the dataset on any problem (version, missing dataset, shape, non-finite value).
+Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm);
+
+/// Value of a named parameter; throws FileError naming the file if absent.
+double parameter(const Checkpoint& checkpoint, const std::string& name, const std::string& path);
+
+} // namespace aniso::h5

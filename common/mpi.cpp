@@ -1,0 +1,154 @@
+#include "common/mpi.hpp"
+
+#include "common/error.hpp"
+
+#include <algorithm>
+
+namespace aniso::mpi {
+namespace {
+
+void check(int status, const char* what) {
+  if (status != MPI_SUCCESS) throw Error(ExitCode::internal_error, std::string("MPI call failed: ") + what);
+}
+
+} // namespace
+
+Environment::Environment(int& argc, char**& argv) {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (!initialized) check(MPI_Init(&argc, &argv), "MPI_Init");
+  // Errors come back as codes so that we can throw with a message instead of aborting silently.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+}
+
+Environment::~Environment() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Finalize();
+}
+
+Comm Comm::world() { return Comm(MPI_COMM_WORLD); }
+
+int Comm::rank() const {
+  int value = 0;
+  check(MPI_Comm_rank(raw_, &value), "MPI_Comm_rank");
+  return value;
+}
+
+int Comm::size() const {
+  int value = 0;
+  check(MPI_Comm_size(raw_, &value), "MPI_Comm_size");
+  return value;
+}
+
+Comm Comm::split(int colour, int key) const {
+  MPI_Comm result = MPI_COMM_NULL;
+  check(MPI_Comm_split(raw_, colour, key, &result), "MPI_Comm_split");
+  return Comm(result);
+}
+
+void Comm::free() {
+  if (raw_ != MPI_COMM_NULL && raw_ != MPI_COMM_WORLD && raw_ != MPI_COMM_SELF) MPI_Comm_free(&raw_);
+}
+
+void Comm::barrier() const { check(MPI_Barrier(raw_), "MPI_Barrier"); }
+
+double Comm::sum_exact(double local) const {
+  ExactSum sum;
+  sum.add(local);
+  return sum_exact(sum).value();
+}
+
+std::vector<double> Comm::sum_exact(std::span<const double> local) const {
+  std::vector<ExactSum> sums(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i) sums[i].add(local[i]);
+  const std::vector<ExactSum> reduced = sum_exact(std::span<const ExactSum>(sums));
+  std::vector<double> result(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i) result[i] = reduced[i].value();
+  return result;
+}
+
+ExactSum Comm::sum_exact(const ExactSum& local) const {
+  return sum_exact(std::span<const ExactSum>(&local, 1))[0];
+}
+
+std::vector<ExactSum> Comm::sum_exact(std::span<const ExactSum> local) const {
+  constexpr int n_limbs = ExactSum::n_limbs;
+  constexpr std::size_t stride = n_limbs + 1; // one extra slot carries the non-finite flag
+  const std::size_t n_values = local.size();
+  std::vector<std::int64_t> packed(n_values * stride);
+  for (std::size_t i = 0; i < n_values; ++i) {
+    const auto limbs = local[i].normalized_limbs();
+    std::copy(limbs.begin(), limbs.end(), packed.begin() + static_cast<std::ptrdiff_t>(i * stride));
+    packed[i * stride + n_limbs] = local[i].nonfinite() ? 1 : 0;
+  }
+  // Normalized limbs are below 2^32, so an integer sum over any realistic rank count cannot overflow.
+  check(MPI_Allreduce(MPI_IN_PLACE, packed.data(), static_cast<int>(packed.size()), MPI_INT64_T, MPI_SUM, raw_),
+        "MPI_Allreduce (exact sum)");
+  std::vector<ExactSum> result(n_values);
+  for (std::size_t i = 0; i < n_values; ++i) {
+    ExactSum::Limbs limbs{};
+    std::copy_n(packed.begin() + static_cast<std::ptrdiff_t>(i * stride), n_limbs, limbs.begin());
+    result[i] = ExactSum::from_limbs(limbs, packed[i * stride + n_limbs] != 0);
+  }
+  return result;
+}
+
+std::int64_t Comm::sum(std::int64_t local) const {
+  std::int64_t result = 0;
+  check(MPI_Allreduce(&local, &result, 1, MPI_INT64_T, MPI_SUM, raw_), "MPI_Allreduce (sum)");
+  return result;
+}
+
+std::vector<std::int64_t> Comm::sum(std::span<const std::int64_t> local) const {
+  std::vector<std::int64_t> result(local.begin(), local.end());
+  check(MPI_Allreduce(MPI_IN_PLACE, result.data(), static_cast<int>(result.size()), MPI_INT64_T, MPI_SUM, raw_),
+        "MPI_Allreduce (sum)");
+  return result;
+}
+
+double Comm::max(double local) const {
+  double result = 0;
+  check(MPI_Allreduce(&local, &result, 1, MPI_DOUBLE, MPI_MAX, raw_), "MPI_Allreduce (max)");
+  return result;
+}
+
+double Comm::min(double local) const {
+  double result = 0;
+  check(MPI_Allreduce(&local, &result, 1, MPI_DOUBLE, MPI_MIN, raw_), "MPI_Allreduce (min)");
+  return result;
+}
+
+std::int64_t Comm::max(std::int64_t local) const {
+  std::int64_t result = 0;
+  check(MPI_Allreduce(&local, &result, 1, MPI_INT64_T, MPI_MAX, raw_), "MPI_Allreduce (max)");
+  return result;
+}
+
+bool Comm::any(bool local) const {
+  int value = local ? 1 : 0;
+  int result = 0;
+  check(MPI_Allreduce(&value, &result, 1, MPI_INT, MPI_LOR, raw_), "MPI_Allreduce (any)");
+  return result != 0;
+}
+
+std::int64_t Comm::exclusive_scan(std::int64_t local) const {
+  std::int64_t result = 0;
+  check(MPI_Exscan(&local, &result, 1, MPI_INT64_T, MPI_SUM, raw_), "MPI_Exscan");
+  return rank() == 0 ? 0 : result; // MPI leaves rank 0's result undefined
+}
+
+void Comm::broadcast(std::vector<char>& bytes, int root) const {
+  auto n_bytes = static_cast<std::int64_t>(bytes.size());
+  check(MPI_Bcast(&n_bytes, 1, MPI_INT64_T, root, raw_), "MPI_Bcast (size)");
+  bytes.resize(static_cast<std::size_t>(n_bytes));
+  check(MPI_Bcast(bytes.data(), static_cast<int>(n_bytes), MPI_CHAR, root, raw_), "MPI_Bcast");
+}
+
+std::vector<std::int64_t> Comm::all_gather(std::int64_t local) const {
+  std::vector<std::int64_t> result(static_cast<std::size_t>(size()));
+  check(MPI_Allgather(&local, 1, MPI_INT64_T, result.data(), 1, MPI_INT64_T, raw_), "MPI_Allgather");
+  return result;
+}
+
+} // namespace aniso::mpi

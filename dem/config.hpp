@@ -1,0 +1,65 @@
+#pragma once
+// Typed configuration of aniso-dem, read from the [dem] table. Every key has a
+// unit, a default from the paper (section "DEM Simulations") and an allowed
+// range; docs/methods/dem.md lists them.
+
+#include "common/config.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aniso::dem {
+
+struct ParticleConfig {
+  std::int64_t count = 1000;
+  double diameter_min = 0.075e-3; ///< [m]
+  double diameter_max = 0.28e-3;  ///< [m]
+  double d50 = 0.17e-3;           ///< median diameter by volume [m]
+  double aspect_ratio = 1.0;      ///< 1 = sphere, < 1 oblate ovoid
+  double density = 2650.0;        ///< [kg/m^3]
+};
+
+struct MaterialConfig {
+  double shear_modulus = 29e9;   ///< G [Pa]
+  double poisson_ratio = 0.15;   ///< nu
+  double friction = 0.5;         ///< mu during consolidation and loading
+  double friction_prepare = 0.3; ///< mu during compaction cycles
+};
+
+struct IntegrationConfig {
+  double time_step_fraction = 0.2; ///< of the Rayleigh critical step of the smallest particle
+  double damping = 0.0;            ///< global damping ratio (see docs/methods/dem.md)
+};
+
+struct PrepareConfig {
+  std::vector<double> cell_aspect{1.5, 1.0, 1.0}; ///< L1:L2:L3 of the cell
+  double initial_solid_fraction = 0.15; ///< sparse random arrangement
+  std::int64_t cycles = 14;             ///< compaction cycles
+  double target_void_ratio = 0.556;     ///< keep the cycle nearest this
+  double confining_pressure = 100e3;    ///< p0 [Pa]
+  double compaction_strain_rate = 0.0;  ///< 0: chosen from the inertial number
+};
+
+struct LoadConfig {
+  double inertial_number = 1e-3;      ///< sets the strain rate: I = rate D50 sqrt(rho / p)
+  double final_strain = 0.2;          ///< compressive eps11 magnitude at the end
+  double mean_stress = 100e3;         ///< p held constant [Pa]
+  std::vector<double> checkpoint_strains; ///< compressive strains at which to write checkpoints
+  double history_interval = 1e-4;     ///< strain between history rows
+};
+
+struct DemConfig {
+  std::uint64_t seed = 1;
+  std::string output_dir = ".";
+  ParticleConfig particles;
+  MaterialConfig material;
+  IntegrationConfig integration;
+  PrepareConfig prepare;
+  LoadConfig load;
+};
+
+/// Reads every [dem] key through `reader` (which records and range-checks them).
+DemConfig read_dem_config(config::Reader& reader);
+
+} // namespace aniso::dem
