@@ -42,8 +42,18 @@ DemConfig read_dem_config(config::Reader& reader) {
   i.time_step_fraction = reader.real("dem.integration.time_step_fraction", i.time_step_fraction, units::none,
                                      Range::open_closed(0.0, 1.0),
                                      "time step as a fraction of the Rayleigh critical step of the smallest particle");
+  i.time_step = reader.real("dem.integration.time_step", i.time_step, units::second, Range::non_negative(),
+                            "explicit time step (0: from time_step_fraction); refused above the critical step");
   i.damping = reader.real("dem.integration.damping", i.damping, units::none, Range::closed(0.0, 1.0),
-                          "damping ratio");
+                          "viscous contact damping ratio during loading");
+  i.skin = reader.real("dem.integration.skin", i.skin, units::none, Range::open_closed(0.0, 1.0),
+                       "neighbour-list skin in units of D50");
+  i.control_interval = reader.integer("dem.integration.control_interval", i.control_interval, Range::closed(1, 1e6),
+                                      "steps between stress measurements and servo updates");
+  i.servo_gain = reader.real("dem.integration.servo_gain", i.servo_gain, units::none, Range::open_closed(0.0, 1.0),
+                             "fraction of the stress error removed per servo update");
+  i.explosion_overlap = reader.real("dem.integration.explosion_overlap", i.explosion_overlap, units::none,
+                                    Range::open(0.0, 1.0), "stop when an overlap exceeds this fraction of a radius");
 
   auto& pr = c.prepare;
   pr.cell_aspect = reader.reals("dem.prepare.cell_aspect", pr.cell_aspect, units::none, Range::positive(), 3,
@@ -53,14 +63,22 @@ DemConfig read_dem_config(config::Reader& reader) {
                             pr.cell_aspect.size()));
   pr.initial_solid_fraction = reader.real("dem.prepare.initial_solid_fraction", pr.initial_solid_fraction,
                                           units::none, Range::open(0.0, 0.4), "solid fraction of the sparse start");
+  require_input(pr.seize_stress < pr.confining_pressure, "config: dem.prepare.seize_stress must be below confining_pressure");
   pr.cycles = reader.integer("dem.prepare.cycles", pr.cycles, Range::closed(1, 1000), "compaction cycles (paper: 14)");
   pr.target_void_ratio = reader.real("dem.prepare.target_void_ratio", pr.target_void_ratio, units::none,
                                      Range::positive(), "keep the assembly nearest this void ratio");
   pr.confining_pressure = reader.real("dem.prepare.confining_pressure", pr.confining_pressure, units::pascal,
                                       Range::positive(), "isotropic consolidation pressure p0");
-  pr.compaction_strain_rate = reader.real("dem.prepare.compaction_strain_rate", pr.compaction_strain_rate,
-                                          units::per_second, Range::non_negative(),
-                                          "volumetric compaction rate (0: from the inertial number)");
+  pr.inertial_number = reader.real("dem.prepare.inertial_number", pr.inertial_number, units::none,
+                                   Range::open(0.0, 1.0), "compaction and consolidation rate as I at p0");
+  pr.damping = reader.real("dem.prepare.damping", pr.damping, units::none, Range::closed(0.0, 1.0),
+                           "contact damping ratio while compacting");
+  pr.seize_stress = reader.real("dem.prepare.seize_stress", pr.seize_stress, units::pascal, Range::positive(),
+                                "mean stress at which a compacting assembly counts as seized");
+  pr.agitation_speed = reader.real("dem.prepare.agitation_speed", pr.agitation_speed, units::none,
+                                   Range::non_negative(), "rms random speed between cycles, in sqrt(p0/rho)");
+  pr.consolidation_tolerance = reader.real("dem.prepare.consolidation_tolerance", pr.consolidation_tolerance,
+                                           units::none, Range::open(0.0, 0.5), "|p - p0|/p0 to end consolidation");
 
   auto& l = c.load;
   l.inertial_number = reader.real("dem.load.inertial_number", l.inertial_number, units::none, Range::open(0.0, 1.0),

@@ -4,6 +4,11 @@
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "dem/config.hpp"
+#include "dem/io.hpp"
+#include "dem/load.hpp"
+#include "dem/prepare.hpp"
+
+#include <filesystem>
 
 namespace {
 
@@ -13,10 +18,14 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   cli::CommonOptions options;
   cli::add_common_options(app, options, "aniso-dem");
   app.require_subcommand(1);
-  auto* prepare = app.add_subcommand("prepare", "build a dense isotropic assembly consolidated to p0");
-  auto* load = app.add_subcommand("load", "biaxial plane strain at constant mean stress from a prepared assembly");
+  auto* prepare = app.add_subcommand("prepare", "build a dense isotropic assembly consolidated to p0 "
+                                                "(writes <output_dir>/prepared.h5)");
+  auto* load = app.add_subcommand("load", "biaxial plane strain at constant mean stress from a prepared assembly "
+                                          "(writes <output_dir>/load_NNN.h5 and history.h5)");
   std::string input;
-  load->add_option("--input", input, "prepared assembly (checkpoint HDF5)")->required();
+  bool resume = false;
+  load->add_option("--input", input, "prepared assembly, or with --resume a load checkpoint (HDF5)")->required();
+  load->add_flag("--resume", resume, "continue a loading run from one of its checkpoints");
   prepare->fallthrough();
   load->fallthrough();
   if (auto code = cli::parse(app, argc, argv, comm)) return *code;
@@ -27,16 +36,42 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const dem::DemConfig config = dem::read_dem_config(reader);
   if (cli::finish_config(reader, options, comm)) return 0;
   const Logger logger = make_logger("aniso-dem", comm, options.log_level);
+  require_input(comm.size() == 1, "aniso-dem runs on one rank in this version (domain decomposition is issue 3's "
+                                  "remaining work); run it without mpiexec -n > 1");
 
+  std::optional<h5::Checkpoint> checkpoint;
   if (load->parsed()) {
-    const auto checkpoint = h5::read_checkpoint(input, comm);
-    logger->info("input '{}' is a valid checkpoint: {} particles, {} contacts, step {}", input,
-                 checkpoint.particles.size(), checkpoint.contacts.size(), checkpoint.step);
+    checkpoint = h5::read_checkpoint(input, comm);
+    logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->particles.size(),
+                 checkpoint->contacts.size(), checkpoint->step);
   }
   logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
   if (options.dry_run) return 0;
-  throw Error(ExitCode::internal_error, "aniso-dem: the DEM engine is not built yet (issue 3); only --dry-run "
-                                        "validation is available in this version");
+
+  std::filesystem::create_directories(config.output_dir);
+  const std::string command = cli::join_command_line(argc, argv);
+  if (prepare->parsed()) {
+    const auto provenance = h5::make_provenance("aniso-dem prepare", reader.effective_toml(), command, comm);
+    dem::PreparedAssembly prepared = dem::prepare_assembly(config, logger);
+    const std::string path = config.output_dir + "/prepared.h5";
+    h5::write_checkpoint(path, dem::to_checkpoint(*prepared.simulation, config.particles.d50, prepared.rng_state),
+                         provenance, comm);
+    logger->info("wrote {}: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f}, p = {:.4g} Pa", path,
+                 prepared.consolidated.void_ratio, prepared.consolidated.coordination,
+                 prepared.consolidated.coordination_no_rattlers, prepared.consolidated.mean_stress);
+    return 0;
+  }
+  const auto provenance = h5::make_provenance("aniso-dem load", reader.effective_toml(), command, comm);
+  dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input);
+  if (!resume) dem::start_loading(simulation, config);
+  const dem::LoadSummary summary = dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume);
+  logger->info("load done: strain {:.4g} in {} steps, {:.1f} s wall ({:.3g} particle-steps/s); peak stress ratio "
+               "{:.4f} at strain {:.4g}",
+               summary.final_strain, summary.steps, summary.wall_seconds,
+               static_cast<double>(summary.steps) * static_cast<double>(simulation.particles().size()) /
+                   summary.wall_seconds,
+               summary.peak_stress_ratio, summary.peak_strain);
+  return 0;
 }
 
 } // namespace

@@ -1,0 +1,55 @@
+# aniso: the two commands of the README, and a few helpers.
+#
+#   make demo        install missing Debian packages, build, run the default demo campaign
+#   make test        install missing Debian packages, build, run every test but the long ones, check formatting
+#   make test-long   the long tests only (label `long`)
+#   make format      rewrite all C++ sources with clang-format
+#   make clean       remove the build folder
+#
+# The build lives in build/ and is incremental: configuring again is cheap and
+# never deletes anything. Other CMake options: make test CMAKE_ARGS=-DANISO_NATIVE=ON
+
+BUILD      := build
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_ARGS ?=
+# ctest runs this many tests at once; MPI tests ask for their rank count on top.
+TEST_JOBS  ?= 2
+
+# Open MPI refuses to run as root unless told it may (containers, CI machines).
+MPI_ENV := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+.PHONY: all demo test test-long format clean deps-test deps-demo configure build
+
+all: build
+
+deps-test:
+	bash scripts/install-deps.sh test
+
+deps-demo:
+	bash scripts/install-deps.sh demo
+
+configure:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DANISO_WERROR=ON $(CMAKE_ARGS)
+
+build: configure
+	cmake --build $(BUILD) -j$(JOBS)
+
+demo: deps-demo
+	$(MAKE) build
+	$(MPI_ENV) $(MAKE) -C workflows demo BIN=$(abspath $(BUILD))
+
+test: deps-test
+	$(MAKE) build
+	cd $(BUILD) && $(MPI_ENV) ctest --output-on-failure -j$(TEST_JOBS) -LE '^long$$'
+	cmake --build $(BUILD) --target format-check
+
+test-long: deps-test
+	$(MAKE) build
+	cd $(BUILD) && $(MPI_ENV) ctest --output-on-failure -L '^long$$'
+
+format: deps-test
+	$(MAKE) configure
+	cmake --build $(BUILD) --target format
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,64 @@
+#include "dem/forces.hpp"
+
+#include <cmath>
+
+namespace aniso::dem {
+
+std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
+                                    const ContactMaterial& material, double time_step, NeighborList& neighbors) {
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    particles.force[k].setZero();
+    particles.torque[k].setZero();
+  }
+  const Vec3& lengths = cell.lengths();
+  const Vec3 inverse_lengths = lengths.cwiseInverse();
+  const auto& pairs = neighbors.pairs();
+  auto& history = neighbors.history();
+  auto& records = neighbors.records();
+  std::int64_t n_touching = 0;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const std::uint32_t i = pairs[k].i, j = pairs[k].j;
+    Vec3 d = particles.position[j] - particles.position[i];
+    for (int a = 0; a < 3; ++a) d[a] -= lengths[a] * std::nearbyint(d[a] * inverse_lengths[a]);
+    const double radius_sum = particles.radius[i] + particles.radius[j];
+    const double distance_squared = d.squaredNorm();
+    ContactRecord& record = records[k];
+    if (distance_squared >= radius_sum * radius_sum) {
+      history[k] = ContactHistory{};
+      record = ContactRecord{};
+      continue;
+    }
+    ++n_touching;
+    const double distance = std::sqrt(distance_squared);
+    const Vec3 normal = d / distance;
+    const double overlap = radius_sum - distance;
+    // Lever arms from each centre to the contact point, which sits mid-way through the overlap.
+    const double arm_i = particles.radius[i] - 0.5 * overlap;
+    const double arm_j = particles.radius[j] - 0.5 * overlap;
+    ContactKinematics kinematics;
+    kinematics.normal = normal;
+    kinematics.overlap = overlap;
+    kinematics.relative_velocity =
+        particles.velocity[j] - particles.velocity[i] + strain_rate.cwiseProduct(d) -
+        (arm_j * particles.angular_velocity[j] + arm_i * particles.angular_velocity[i]).cross(normal);
+    kinematics.time_step = time_step;
+    PairProperties pair;
+    pair.effective_radius = particles.radius[i] * particles.radius[j] / radius_sum;
+    pair.effective_mass = particles.mass[i] * particles.mass[j] / (particles.mass[i] + particles.mass[j]);
+    const ContactForce result = hertz_mindlin_force(material, pair, kinematics, history[k]);
+    const Vec3 moment_direction = normal.cross(result.force_on_i);
+    particles.force[i] += result.force_on_i;
+    particles.force[j] -= result.force_on_i;
+    particles.torque[i] += arm_i * moment_direction;
+    particles.torque[j] += arm_j * moment_direction;
+    record.normal = normal;
+    record.distance = distance;
+    record.overlap = overlap;
+    record.force_on_i = result.force_on_i;
+    record.normal_force = result.normal_force;
+    record.tangential_stiffness = result.tangential_stiffness;
+  }
+  return n_touching;
+}
+
+} // namespace aniso::dem

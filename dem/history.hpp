@@ -1,0 +1,42 @@
+#pragma once
+// The loading history: one row per history interval of strain, in HDF5
+// (history.h5, one 1-D dataset per column with its unit) and CSV. Rewritten
+// atomically at every checkpoint, so the file on disk always matches a
+// checkpoint that exists. Layout: docs/formats/history.md.
+
+#include "common/h5/provenance.hpp"
+
+#include <string>
+#include <vector>
+
+namespace aniso::dem {
+
+struct HistoryColumn {
+  std::string name;
+  std::string unit;
+  std::string description;
+};
+
+/// The columns, in order.
+const std::vector<HistoryColumn>& history_columns();
+
+class History {
+public:
+  History();
+  /// Appends a row; values in the order of history_columns().
+  void append(const std::vector<double>& row);
+  [[nodiscard]] std::size_t size() const { return columns_.empty() ? 0 : columns_[0].size(); }
+  [[nodiscard]] const std::vector<double>& column(const std::string& name) const;
+  /// Drops rows whose step is above `step` (resuming from an earlier checkpoint).
+  void truncate_after_step(double step);
+
+  /// Writes history.h5 and history.csv into `folder`, each atomically.
+  void write(const std::string& folder, const h5::Provenance& provenance) const;
+  /// Reads history.h5 from `folder`; FileError naming the file if absent or malformed.
+  static History read(const std::string& folder);
+
+private:
+  std::vector<std::vector<double>> columns_;
+};
+
+} // namespace aniso::dem

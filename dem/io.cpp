@@ -1,0 +1,139 @@
+#include "dem/io.hpp"
+
+#include "common/error.hpp"
+#include "common/units.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace aniso::dem {
+
+h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
+                             const std::vector<std::array<std::uint64_t, 4>>& rng_state) {
+  h5::Checkpoint c;
+  c.time = simulation.time();
+  c.step = simulation.step_count();
+  const SimulationSettings& s = simulation.settings();
+  c.time_step = s.time_step;
+  c.cell = simulation.cell_state();
+  const Particles& p = simulation.particles();
+  const std::size_t n = p.size();
+  c.particles.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    c.particles.id[k] = p.id[k];
+    c.particles.diameter[k] = 2 * p.radius[k];
+    c.particles.aspect_ratio[k] = p.aspect_ratio[k];
+    c.particles.mass[k] = p.mass[k];
+    c.particles.inertia[k] = p.inertia[k];
+    c.particles.position[k] = p.position[k];
+    c.particles.orientation[k] = p.orientation[k];
+    c.particles.velocity[k] = p.velocity[k];
+    c.particles.angular_velocity[k] = p.angular_velocity[k];
+    c.particles.force[k] = p.force[k];
+    c.particles.torque[k] = p.torque[k];
+  }
+  const auto& pairs = simulation.neighbors().pairs();
+  const auto& records = simulation.neighbors().records();
+  const auto& history = simulation.neighbors().history();
+  const Vec3& lengths = simulation.cell().lengths();
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (records[k].overlap <= 0) continue;
+    const auto i = pairs[k].i, j = pairs[k].j;
+    const Vec3 branch = records[k].distance * records[k].normal;
+    const Vec3 raw = p.position[j] - p.position[i];
+    Vec3i shift;
+    for (int a = 0; a < 3; ++a) shift[a] = static_cast<int>(std::nearbyint((branch[a] - raw[a]) / lengths[a]));
+    c.contacts.particles.push_back({p.id[i], p.id[j]});
+    c.contacts.image_shift.push_back(shift);
+    c.contacts.normal.push_back(records[k].normal);
+    c.contacts.point.push_back(
+        simulation.cell().wrap(p.position[i] + (p.radius[i] - 0.5 * records[k].overlap) * records[k].normal));
+    c.contacts.overlap.push_back(records[k].overlap);
+    c.contacts.force.push_back(records[k].force_on_i);
+    c.contacts.tangential_spring.push_back(history[k].tangential_spring);
+    c.contacts.sliding.push_back(history[k].sliding ? 1 : 0);
+  }
+  c.parameters = {
+      {"shear_modulus", s.material.shear_modulus, units::pascal},
+      {"poisson_ratio", s.material.poisson_ratio, units::none},
+      {"friction", s.material.friction, units::none},
+      {"damping_ratio", s.material.damping_ratio, units::none},
+      {"density", s.density, units::density},
+      {"d50", d50, units::metre},
+      {"skin", s.skin, units::metre},
+      {"control_interval", static_cast<double>(s.control_interval), units::none},
+      {"servo_gain", s.servo.gain, units::none},
+      {"servo_max_rate", s.servo.max_rate, units::per_second},
+      {"explosion_overlap", s.explosion_overlap, units::none},
+  };
+  c.rng_state = rng_state;
+  return c;
+}
+
+SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path) {
+  SimulationSettings s;
+  const auto get = [&](const char* name) { return h5::parameter(checkpoint, name, path); };
+  s.material.shear_modulus = get("shear_modulus");
+  s.material.poisson_ratio = get("poisson_ratio");
+  s.material.friction = get("friction");
+  s.material.damping_ratio = get("damping_ratio");
+  s.density = get("density");
+  s.time_step = checkpoint.time_step;
+  s.skin = get("skin");
+  s.control_interval = static_cast<std::int64_t>(get("control_interval"));
+  s.servo.gain = get("servo_gain");
+  s.servo.max_rate = get("servo_max_rate");
+  s.explosion_overlap = get("explosion_overlap");
+  return s;
+}
+
+Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path) {
+  const auto& rows = checkpoint.particles;
+  Particles particles;
+  particles.resize(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    particles.id[k] = rows.id[k];
+    particles.radius[k] = 0.5 * rows.diameter[k];
+    particles.aspect_ratio[k] = rows.aspect_ratio[k];
+    particles.mass[k] = rows.mass[k];
+    particles.inertia[k] = rows.inertia[k];
+    particles.position[k] = rows.position[k];
+    particles.orientation[k] = rows.orientation[k];
+    particles.velocity[k] = rows.velocity[k];
+    particles.angular_velocity[k] = rows.angular_velocity[k];
+    particles.force[k] = rows.force[k];
+    particles.torque[k] = rows.torque[k];
+  }
+  const SimulationSettings settings = settings_from_checkpoint(checkpoint, path);
+  Simulation simulation(std::move(particles), checkpoint.cell, settings, checkpoint.time, checkpoint.step, true);
+  // On one rank index == id, so the stored ids are the local indices.
+  NeighborList& neighbors = simulation.neighbors();
+  const Particles& p = simulation.particles();
+  const auto& contacts = checkpoint.contacts;
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const auto i = static_cast<std::uint32_t>(contacts.particles[c][0]);
+    const auto j = static_cast<std::uint32_t>(contacts.particles[c][1]);
+    const std::int64_t k = neighbors.find(p, i, j);
+    if (k < 0) {
+      throw FileError(fmt::format("checkpoint '{}': contact ({}, {}) is not within reach of the restored positions",
+                                  path, i, j));
+    }
+    auto& record = neighbors.records()[static_cast<std::size_t>(k)];
+    record.normal = contacts.normal[c];
+    record.overlap = contacts.overlap[c];
+    record.distance = p.radius[i] + p.radius[j] - contacts.overlap[c];
+    record.force_on_i = contacts.force[c];
+    const double effective_radius = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+    record.normal_force =
+        hertz_normal_force(contact_modulus(settings.material), effective_radius, contacts.overlap[c]);
+    record.tangential_stiffness = mindlin_tangential_stiffness(settings.material, effective_radius, contacts.overlap[c]);
+    auto& history = neighbors.history()[static_cast<std::size_t>(k)];
+    history.tangential_spring = contacts.tangential_spring[c];
+    history.sliding = contacts.sliding[c] != 0;
+  }
+  simulation.restore_stress();
+  return simulation;
+}
+
+} // namespace aniso::dem

@@ -1,0 +1,135 @@
+#include "dem/load.hpp"
+
+#include "common/h5/checkpoint.hpp"
+#include "dem/history.hpp"
+#include "dem/io.hpp"
+#include "dem/settings.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace aniso::dem {
+namespace {
+
+using h5::AxisMode;
+
+double compressive_strain(const Simulation& simulation) { return -simulation.cell().engineering_strain()[0]; }
+
+std::vector<double> history_row(const Simulation& simulation, const DemConfig& config) {
+  const StateMeasures m = simulation.measure();
+  const Vec3 strain = simulation.cell().engineering_strain();
+  const Vec3& reference = simulation.cell().reference_lengths();
+  const double volumetric = simulation.cell().volume() / reference.prod() - 1.0;
+  const Mat3& s = m.stress;
+  // Paper Fig. 3a plots (sigma_11 - sigma_33)/p with compression positive.
+  const double ratio = (-s(0, 0) + s(2, 2)) / m.mean_stress;
+  const double inertial =
+      inertial_number(simulation.control().strain_rate[0], config.particles.d50, config.particles.density, m.mean_stress);
+  return {static_cast<double>(simulation.step_count()),
+          simulation.time(),
+          strain[0],
+          strain[1],
+          strain[2],
+          volumetric,
+          s(0, 0),
+          s(1, 1),
+          s(2, 2),
+          s(1, 2),
+          s(0, 2),
+          s(0, 1),
+          m.mean_stress,
+          m.deviatoric_stress,
+          ratio,
+          m.void_ratio,
+          m.coordination,
+          m.coordination_no_rattlers,
+          static_cast<double>(m.n_contacts),
+          inertial,
+          m.elastic_energy > 0 ? m.kinetic_energy / m.elastic_energy : 0.0,
+          (m.mean_stress - config.load.mean_stress) / config.load.mean_stress};
+}
+
+} // namespace
+
+std::string load_checkpoint_path(const std::string& folder, std::size_t index) {
+  return fmt::format("{}/load_{:03d}.h5", folder, index);
+}
+
+void start_loading(Simulation& simulation, const DemConfig& config) {
+  const auto& pc = config.particles;
+  const double rate = strain_rate_for_inertial_number(config.load.inertial_number, pc.d50, pc.density,
+                                                      config.load.mean_stress);
+  simulation.reset_reference_lengths();
+  simulation.set_friction(config.material.friction);
+  simulation.set_damping(config.integration.damping);
+  // The servoed axis must outrun dilatancy but not the assembly's own response.
+  simulation.set_servo_max_rate(5.0 * rate);
+  h5::CellState state = simulation.cell_state();
+  state.mode = {AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::stress};
+  state.target = Vec3(-rate, 0.0, -config.load.mean_stress);
+  state.hold_mean_stress = true;
+  state.mean_stress_target = config.load.mean_stress;
+  simulation.set_control(state);
+}
+
+LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
+                        const h5::Provenance& provenance, const Logger& logger, bool resuming) {
+  const auto& load = config.load;
+  const auto start_wall = std::chrono::steady_clock::now();
+  History history;
+  if (resuming) {
+    history = History::read(output_dir);
+    history.truncate_after_step(static_cast<double>(simulation.step_count()));
+  } else {
+    history.append(history_row(simulation, config));
+  }
+  const mpi::Comm self(MPI_COMM_SELF);
+  LoadSummary summary;
+  const std::int64_t start_step = simulation.step_count();
+  double next_history = (std::floor(compressive_strain(simulation) / load.history_interval) + 1) * load.history_interval;
+  std::size_t next_checkpoint = 0;
+  while (next_checkpoint < load.checkpoint_strains.size() &&
+         load.checkpoint_strains[next_checkpoint] <= compressive_strain(simulation)) {
+    ++next_checkpoint;
+  }
+  const double rate = -simulation.control().target[0];
+  logger->info("load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s", rate,
+               load.inertial_number, compressive_strain(simulation), load.final_strain, simulation.settings().time_step);
+  Progress progress(logger, "load", load.final_strain, 10.0);
+  for (double strain = compressive_strain(simulation); strain < load.final_strain;
+       strain = compressive_strain(simulation)) {
+    simulation.step();
+    strain = compressive_strain(simulation);
+    progress.update(strain);
+    if (strain >= next_history || strain >= load.final_strain) {
+      history.append(history_row(simulation, config));
+      while (next_history <= strain) next_history += load.history_interval;
+    }
+    if (next_checkpoint < load.checkpoint_strains.size() && strain >= load.checkpoint_strains[next_checkpoint]) {
+      const std::string path = load_checkpoint_path(output_dir, next_checkpoint);
+      h5::write_checkpoint(path, to_checkpoint(simulation, config.particles.d50, {}), provenance, self);
+      history.write(output_dir, provenance);
+      logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e})", next_checkpoint, strain,
+                   path, mean_stress_compression_positive(simulation.stress()), simulation.servo_error());
+      summary.checkpoints.push_back(path);
+      ++next_checkpoint;
+    }
+  }
+  history.write(output_dir, provenance);
+  const auto& ratio = history.column("stress_ratio");
+  const auto& strain_11 = history.column("strain_11");
+  for (std::size_t r = 0; r < ratio.size(); ++r) {
+    if (ratio[r] > summary.peak_stress_ratio) {
+      summary.peak_stress_ratio = ratio[r];
+      summary.peak_strain = -strain_11[r];
+    }
+  }
+  summary.final_strain = compressive_strain(simulation);
+  summary.steps = simulation.step_count() - start_step;
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_wall).count();
+  return summary;
+}
+
+} // namespace aniso::dem

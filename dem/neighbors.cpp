@@ -1,0 +1,152 @@
+#include "dem/neighbors.hpp"
+
+#include "common/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace aniso::dem {
+namespace {
+
+Vec3 separation(const Vec3& from, const Vec3& to, const Vec3& lengths) {
+  Vec3 d = to - from;
+  for (int a = 0; a < 3; ++a) d[a] -= lengths[a] * std::nearbyint(d[a] / lengths[a]);
+  return d;
+}
+
+bool pair_less(const Particles& particles, const Pair& a, const Pair& b) {
+  const auto ai = particles.id[a.i], bi = particles.id[b.i];
+  return ai != bi ? ai < bi : particles.id[a.j] < particles.id[b.j];
+}
+
+} // namespace
+
+void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
+  const std::size_t n = particles.size();
+  const Vec3& lengths = cell.lengths();
+  max_radius_ = n ? *std::max_element(particles.radius.begin(), particles.radius.end()) : 0.0;
+  const double bin_reach = 2 * max_radius_ + skin_;
+  for (int a = 0; a < 3; ++a) {
+    // The minimum image is unique only if no pair can interact through two images.
+    if (lengths[a] < 2 * bin_reach) {
+      throw NumericalError(fmt::format("periodic cell length {:.4g} m on axis {} is below twice the interaction "
+                                       "range {:.4g} m: use more particles or a less elongated cell",
+                                       lengths[a], a + 1, bin_reach));
+    }
+  }
+  int n_bins[3];
+  for (int a = 0; a < 3; ++a) n_bins[a] = std::max(1, static_cast<int>(lengths[a] / bin_reach));
+  const auto bin_of = [&](const Vec3& x) {
+    int b[3];
+    for (int a = 0; a < 3; ++a) {
+      b[a] = static_cast<int>(x[a] / lengths[a] * n_bins[a]);
+      b[a] = std::clamp(b[a], 0, n_bins[a] - 1);
+    }
+    return (b[0] * n_bins[1] + b[1]) * n_bins[2] + b[2];
+  };
+  // Counting sort of particles into bins.
+  const int total_bins = n_bins[0] * n_bins[1] * n_bins[2];
+  std::vector<int> bin_start(static_cast<std::size_t>(total_bins) + 1, 0);
+  std::vector<int> particle_bin(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    particle_bin[i] = bin_of(particles.position[i]);
+    ++bin_start[static_cast<std::size_t>(particle_bin[i]) + 1];
+  }
+  for (int b = 0; b < total_bins; ++b) bin_start[b + 1] += bin_start[b];
+  std::vector<std::uint32_t> binned(n);
+  {
+    std::vector<int> fill(bin_start.begin(), bin_start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) binned[static_cast<std::size_t>(fill[particle_bin[i]]++)] = static_cast<std::uint32_t>(i);
+  }
+  // Neighbour bin offsets, de-duplicated for axes with fewer than three bins.
+  std::vector<Pair> fresh;
+  fresh.reserve(pairs_.size() + n);
+  std::vector<int> neighbour_bins;
+  for (int b0 = 0; b0 < n_bins[0]; ++b0) {
+    for (int b1 = 0; b1 < n_bins[1]; ++b1) {
+      for (int b2 = 0; b2 < n_bins[2]; ++b2) {
+        const int home = (b0 * n_bins[1] + b1) * n_bins[2] + b2;
+        neighbour_bins.clear();
+        for (int o0 = -1; o0 <= 1; ++o0)
+          for (int o1 = -1; o1 <= 1; ++o1)
+            for (int o2 = -1; o2 <= 1; ++o2) {
+              const int c0 = (b0 + o0 + n_bins[0]) % n_bins[0];
+              const int c1 = (b1 + o1 + n_bins[1]) % n_bins[1];
+              const int c2 = (b2 + o2 + n_bins[2]) % n_bins[2];
+              neighbour_bins.push_back((c0 * n_bins[1] + c1) * n_bins[2] + c2);
+            }
+        std::sort(neighbour_bins.begin(), neighbour_bins.end());
+        neighbour_bins.erase(std::unique(neighbour_bins.begin(), neighbour_bins.end()), neighbour_bins.end());
+        for (int p = bin_start[home]; p < bin_start[home + 1]; ++p) {
+          const std::uint32_t i = binned[static_cast<std::size_t>(p)];
+          for (int other : neighbour_bins) {
+            for (int q = bin_start[other]; q < bin_start[other + 1]; ++q) {
+              const std::uint32_t j = binned[static_cast<std::size_t>(q)];
+              if (particles.id[j] <= particles.id[i]) continue;
+              const double reach = particles.radius[i] + particles.radius[j] + skin_;
+              if (separation(particles.position[i], particles.position[j], lengths).squaredNorm() < reach * reach) {
+                fresh.push_back({i, j});
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  std::sort(fresh.begin(), fresh.end(), [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
+  // Carry history over by merging the two sorted lists. Indices may have changed
+  // (migration), but the old list was sorted by the same ids.
+  std::vector<ContactHistory> fresh_history(fresh.size());
+  std::size_t old_k = 0;
+  for (std::size_t k = 0; k < fresh.size() && old_k < pairs_.size(); ++k) {
+    while (old_k < pairs_.size() && pair_less(particles, pairs_[old_k], fresh[k])) ++old_k;
+    if (old_k < pairs_.size() && !pair_less(particles, fresh[k], pairs_[old_k])) fresh_history[k] = history_[old_k];
+  }
+  pairs_ = std::move(fresh);
+  history_ = std::move(fresh_history);
+  records_.assign(pairs_.size(), ContactRecord{});
+  position_at_build_ = particles.position;
+  lengths_at_build_ = lengths;
+  ++n_builds_;
+}
+
+bool NeighborList::needs_rebuild(const Particles& particles, const PeriodicCell& cell) const {
+  if (position_at_build_.size() != particles.size()) return true;
+  const Vec3 scale = cell.lengths().cwiseQuotient(lengths_at_build_);
+  double max_shift_squared = 0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Vec3 affine = position_at_build_[i].cwiseProduct(scale);
+    max_shift_squared = std::max(max_shift_squared, separation(affine, particles.position[i], cell.lengths()).squaredNorm());
+  }
+  // A pair's separation changes by at most twice the largest non-affine shift
+  // plus the cell strain times its length (at most the interaction range).
+  const double strain = (scale - Vec3::Ones()).cwiseAbs().maxCoeff();
+  return 2 * std::sqrt(max_shift_squared) + strain * (4 * max_radius_ + skin_) > skin_;
+}
+
+std::int64_t NeighborList::find(const Particles& particles, std::uint32_t i, std::uint32_t j) const {
+  const Pair key{i, j};
+  const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), key,
+                                   [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
+  if (it == pairs_.end() || it->i != i || it->j != j) return -1;
+  return it - pairs_.begin();
+}
+
+std::vector<Pair> brute_force_pairs(const Particles& particles, const PeriodicCell& cell, double range) {
+  std::vector<Pair> result;
+  for (std::uint32_t i = 0; i < particles.size(); ++i) {
+    for (std::uint32_t j = 0; j < particles.size(); ++j) {
+      if (particles.id[j] <= particles.id[i]) continue;
+      const double reach = particles.radius[i] + particles.radius[j] + range;
+      if (separation(particles.position[i], particles.position[j], cell.lengths()).squaredNorm() < reach * reach) {
+        result.push_back({i, j});
+      }
+    }
+  }
+  std::sort(result.begin(), result.end(), [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
+  return result;
+}
+
+} // namespace aniso::dem

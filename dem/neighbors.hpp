@@ -1,0 +1,67 @@
+#pragma once
+// Candidate pairs from bins that follow the deforming periodic cell, kept as a
+// Verlet list with a skin. Pairs are sorted by (id_i, id_j) with id_i < id_j,
+// which fixes the order in which forces are summed on every particle
+// (partner id ascending): the root of bit-identical results.
+
+#include "common/cell.hpp"
+#include "dem/contact_law.hpp"
+#include "dem/particles.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace aniso::dem {
+
+struct Pair {
+  std::uint32_t i; ///< local index of the particle with the lower id
+  std::uint32_t j; ///< local index of the particle with the higher id
+};
+
+/// What the last force evaluation found for one pair (overlap <= 0: not touching).
+struct ContactRecord {
+  Vec3 normal = Vec3::Zero();     ///< unit, from i to j
+  double distance = 0;            ///< centre distance [m]
+  double overlap = 0;             ///< [m]
+  Vec3 force_on_i = Vec3::Zero(); ///< [N]
+  double normal_force = 0;        ///< elastic normal force [N]
+  double tangential_stiffness = 0;///< [N/m], for the elastic energy
+};
+
+class NeighborList {
+public:
+  /// `skin` is the extra distance beyond touching that a pair may close before the next rebuild [m].
+  explicit NeighborList(double skin) : skin_(skin) {}
+
+  /// Rebuilds the pairs whose surfaces are closer than the skin, and carries the
+  /// contact history of pairs that survive over from the previous list.
+  void build(const Particles& particles, const PeriodicCell& cell);
+  /// True when particles may have moved far enough (fluctuation plus cell strain) to miss a pair.
+  [[nodiscard]] bool needs_rebuild(const Particles& particles, const PeriodicCell& cell) const;
+
+  [[nodiscard]] const std::vector<Pair>& pairs() const { return pairs_; }
+  [[nodiscard]] std::vector<ContactHistory>& history() { return history_; }
+  [[nodiscard]] const std::vector<ContactHistory>& history() const { return history_; }
+  [[nodiscard]] std::vector<ContactRecord>& records() { return records_; }
+  [[nodiscard]] const std::vector<ContactRecord>& records() const { return records_; }
+  [[nodiscard]] double skin() const { return skin_; }
+  [[nodiscard]] std::int64_t n_builds() const { return n_builds_; }
+
+  /// Index of the pair (i, j) in pairs(), or -1 if absent (binary search by ids).
+  [[nodiscard]] std::int64_t find(const Particles& particles, std::uint32_t i, std::uint32_t j) const;
+
+private:
+  double skin_;
+  std::vector<Pair> pairs_;
+  std::vector<ContactHistory> history_;
+  std::vector<ContactRecord> records_;
+  std::vector<Vec3> position_at_build_;
+  Vec3 lengths_at_build_ = Vec3::Ones();
+  double max_radius_ = 0;
+  std::int64_t n_builds_ = 0;
+};
+
+/// Every pair closer than `range` beyond touching, by brute force over all pairs (tests only).
+std::vector<Pair> brute_force_pairs(const Particles& particles, const PeriodicCell& cell, double range);
+
+} // namespace aniso::dem

@@ -1,0 +1,207 @@
+#include "dem/prepare.hpp"
+
+#include "common/error.hpp"
+#include "dem/settings.hpp"
+#include "dem/size_distribution.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace aniso::dem {
+namespace {
+
+using h5::AxisMode;
+
+double kinetic_energy(const Particles& particles) {
+  double energy = 0;
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    energy += 0.5 * particles.mass[k] * particles.velocity[k].squaredNorm();
+    energy += 0.5 * particles.angular_velocity[k].dot(particles.inertia[k].cwiseProduct(particles.angular_velocity[k]));
+  }
+  return energy;
+}
+
+h5::CellState isotropic_strain_control(const Simulation& simulation, double rate) {
+  h5::CellState state = simulation.cell_state();
+  state.mode = {AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::strain_rate};
+  state.target = Vec3::Constant(rate);
+  state.hold_mean_stress = false;
+  return state;
+}
+
+// Compacts at `rate` (negative) until the assembly seizes: a load-bearing
+// network carries at least the seize stress while nearly at rest. Whenever p
+// passes the seize stress the cell is held still, so that a hot, colliding
+// assembly is not mistaken for a seized one: if the stress then decays as the
+// motion is damped out, compaction resumes. Returns the steps taken.
+std::int64_t compact_until_seized(Simulation& simulation, double rate, const PrepareConfig& prepare,
+                                  const Logger& logger, const std::string& label) {
+  simulation.set_control(isotropic_strain_control(simulation, rate));
+  bool holding = false;
+  const std::int64_t interval = simulation.settings().control_interval;
+  const std::int64_t start = simulation.step_count();
+  // Compacting from the sparse state to a solid fraction of 0.74 is a strain of about
+  // ln(0.74 / 0.05) / 3 at most; beyond that something is wrong.
+  const double strain_limit = std::log(0.75 / 0.05) / 3.0;
+  const std::int64_t max_hold_steps = 2000 * interval;
+  std::int64_t held_since = 0;
+  Progress progress(logger, label, prepare.seize_stress, 10.0);
+  const Vec3 start_lengths = simulation.cell().lengths();
+  for (;;) {
+    simulation.step();
+    if (simulation.step_count() % interval != 0) continue;
+    const double p = mean_stress_compression_positive(simulation.stress());
+    const double energy_ratio = kinetic_energy(simulation.particles()) / (std::max(p, 1.0) * simulation.cell().volume());
+    progress.update(std::clamp(p, 0.0, prepare.seize_stress));
+    const bool above = p >= prepare.seize_stress;
+    if (above && energy_ratio < 1e-4) break;
+    const bool stalled = holding && simulation.step_count() - held_since > max_hold_steps;
+    if (above != holding || stalled) {
+      // Stalled: still above the seize stress but never calm; compact on and look again.
+      holding = above && !stalled;
+      held_since = simulation.step_count();
+      simulation.set_control(isotropic_strain_control(simulation, holding ? 0.0 : rate));
+    }
+    if (std::log(start_lengths[0] / simulation.cell().lengths()[0]) > strain_limit) {
+      throw ConvergenceError(fmt::format("{}: the assembly did not seize within a compaction strain of {:.2f} "
+                                         "(p = {:.3g} Pa, seize_stress {:.3g} Pa)",
+                                         label, strain_limit, p, prepare.seize_stress));
+    }
+  }
+  simulation.set_control(isotropic_strain_control(simulation, 0.0));
+  return simulation.step_count() - start;
+}
+
+void agitate(Simulation& simulation, double rms_speed, RandomStream& stream) {
+  Particles& particles = simulation.particles();
+  const double component = rms_speed / std::sqrt(3.0);
+  Vec3 momentum = Vec3::Zero();
+  double total_mass = 0;
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    particles.velocity[k] = Vec3(stream.normal(), stream.normal(), stream.normal()) * component;
+    momentum += particles.mass[k] * particles.velocity[k];
+    total_mass += particles.mass[k];
+  }
+  const Vec3 drift = momentum / total_mass; // no net motion of the assembly
+  for (auto& velocity : particles.velocity) velocity -= drift;
+}
+
+void consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger) {
+  h5::CellState state = simulation.cell_state();
+  state.mode = {AxisMode::stress, AxisMode::stress, AxisMode::stress};
+  state.target = Vec3::Constant(-config.prepare.confining_pressure);
+  state.hold_mean_stress = false;
+  simulation.set_control(state);
+  const double p0 = config.prepare.confining_pressure;
+  const std::int64_t interval = simulation.settings().control_interval;
+  const std::int64_t max_steps = 200 * static_cast<std::int64_t>(0.05 / (rate * simulation.settings().time_step));
+  Progress progress(logger, "consolidation to p0", 1.0, 10.0);
+  std::int64_t settled_checks = 0;
+  for (std::int64_t n = 1;; ++n) {
+    simulation.step();
+    if (simulation.step_count() % interval != 0) continue;
+    const double p = mean_stress_compression_positive(simulation.stress());
+    const double error = std::abs(p - p0) / p0;
+    const double energy_ratio = kinetic_energy(simulation.particles()) / (p * simulation.cell().volume());
+    progress.update(std::clamp(1.0 - error, 0.0, 1.0));
+    // Require the state to hold for 20 consecutive checks, so a passing oscillation does not count.
+    settled_checks = (error < config.prepare.consolidation_tolerance && energy_ratio < 1e-5) ? settled_checks + 1 : 0;
+    if (settled_checks >= 20) break;
+    if (n > max_steps) {
+      throw ConvergenceError(fmt::format("consolidation to p0 = {:.3g} Pa did not settle in {} steps (p = {:.4g} Pa, "
+                                         "kinetic/pV = {:.2g})",
+                                         p0, max_steps, p, energy_ratio));
+    }
+  }
+}
+
+} // namespace
+
+Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement) {
+  const auto& pc = config.particles;
+  const Grading grading{pc.diameter_min, pc.d50, pc.diameter_max};
+  const std::vector<double> diameters = sample_diameters(grading, static_cast<std::size_t>(pc.count), sizes);
+  double solid = 0;
+  for (double d : diameters) solid += particle_volume(0.5 * d, pc.aspect_ratio);
+  const auto& aspect = config.prepare.cell_aspect;
+  const double volume = solid / config.prepare.initial_solid_fraction;
+  const double unit = std::cbrt(volume / (aspect[0] * aspect[1] * aspect[2]));
+  const Vec3 lengths(aspect[0] * unit, aspect[1] * unit, aspect[2] * unit);
+  const PeriodicCell cell(lengths);
+  // Random sequential addition, largest first, so that no two particles overlap.
+  Particles particles;
+  for (std::size_t k = 0; k < diameters.size(); ++k) {
+    const double radius = 0.5 * diameters[k];
+    bool placed = false;
+    for (int attempt = 0; attempt < 100000 && !placed; ++attempt) {
+      const Vec3 x(placement.uniform(0, lengths[0]), placement.uniform(0, lengths[1]), placement.uniform(0, lengths[2]));
+      placed = true;
+      for (std::size_t other = 0; other < particles.size() && placed; ++other) {
+        const double reach = radius + particles.radius[other];
+        placed = cell.minimum_image(x - particles.position[other]).squaredNorm() > reach * reach;
+      }
+      if (placed) particles.add(k, radius, pc.aspect_ratio, pc.density, x);
+    }
+    if (!placed) {
+      throw ConvergenceError(fmt::format("could not place particle {} of {} without overlap: lower "
+                                         "dem.prepare.initial_solid_fraction ({})",
+                                         k + 1, diameters.size(), config.prepare.initial_solid_fraction));
+    }
+  }
+  h5::CellState state;
+  state.lengths = lengths;
+  state.reference_lengths = lengths;
+  SimulationSettings settings = settings_from_config(config, diameters.back());
+  settings.material.friction = config.material.friction_prepare;
+  settings.material.damping_ratio = config.prepare.damping;
+  return Simulation(std::move(particles), state, settings, 0.0, 0, false);
+}
+
+PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger) {
+  RandomStream sizes(config.seed, 0), placement(config.seed, 1), agitation(config.seed, 2);
+  const auto& pc = config.particles;
+  const auto& pr = config.prepare;
+  Simulation simulation = sparse_assembly(config, sizes, placement);
+  const double rate = strain_rate_for_inertial_number(pr.inertial_number, pc.d50, pc.density, pr.confining_pressure);
+  logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction rate {:.3g} /s",
+               pc.count, 1e3 * simulation.cell().lengths()[0], 1e3 * simulation.cell().lengths()[1],
+               1e3 * simulation.cell().lengths()[2], simulation.settings().time_step, rate);
+  PreparedAssembly result;
+  std::optional<Simulation> best;
+  double best_distance = INFINITY;
+  const double rms_speed = pr.agitation_speed * std::sqrt(pr.confining_pressure / pc.density);
+  for (int cycle = 1; cycle <= pr.cycles; ++cycle) {
+    if (cycle > 1) agitate(simulation, rms_speed, agitation);
+    const std::int64_t steps =
+        compact_until_seized(simulation, -rate, pr, logger, fmt::format("compaction cycle {}", cycle));
+    const StateMeasures m = simulation.measure();
+    result.cycle_void_ratios.push_back(m.void_ratio);
+    logger->info("cycle {:2d}: seized after {} steps at e = {:.4f}, Z = {:.3f}", cycle, steps, m.void_ratio,
+                 m.coordination);
+    const double distance = std::abs(m.void_ratio - pr.target_void_ratio);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = simulation;
+      result.chosen_cycle = cycle;
+    }
+  }
+  logger->info("keeping cycle {} (e = {:.4f}, target {:.4f})", result.chosen_cycle,
+               result.cycle_void_ratios[static_cast<std::size_t>(result.chosen_cycle - 1)], pr.target_void_ratio);
+  Simulation chosen = std::move(*best);
+  chosen.set_friction(config.material.friction);
+  chosen.set_damping(config.prepare.damping);
+  chosen.set_servo_max_rate(rate);
+  consolidate(chosen, config, rate, logger);
+  chosen.set_damping(config.integration.damping);
+  result.consolidated = chosen.measure();
+  logger->info("consolidated to p = {:.4g} Pa: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f} ({} rattlers)",
+               result.consolidated.mean_stress, result.consolidated.void_ratio, result.consolidated.coordination,
+               result.consolidated.coordination_no_rattlers, result.consolidated.n_rattlers);
+  result.simulation = std::move(chosen);
+  result.rng_state = {sizes.state(), placement.state(), agitation.state()};
+  return result;
+}
+
+} // namespace aniso::dem

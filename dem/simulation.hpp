@@ -1,0 +1,84 @@
+#pragma once
+// One DEM run: the periodic cell, the particles, the contact list and the cell
+// controller, advanced one velocity-Verlet step at a time. step() is the
+// whole algorithm in order; read it first.
+
+#include "common/cell.hpp"
+#include "common/h5/checkpoint.hpp"
+#include "dem/cell_control.hpp"
+#include "dem/contact_law.hpp"
+#include "dem/measures.hpp"
+#include "dem/neighbors.hpp"
+#include "dem/particles.hpp"
+
+#include <cstdint>
+
+namespace aniso::dem {
+
+struct SimulationSettings {
+  ContactMaterial material;
+  double density = 2650;            ///< [kg/m^3]
+  double time_step = 0;             ///< [s]; checked against the Rayleigh step
+  double skin = 0;                  ///< neighbour-list skin [m]
+  std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
+  ServoSettings servo;
+  double explosion_overlap = 0.05;  ///< stop when an overlap exceeds this fraction of the smaller radius
+};
+
+class Simulation {
+public:
+  /// Takes the particles (with forces as stored, or zero) and the cell state; builds the contact list.
+  /// If `forces_valid` is false the initial forces are computed here; if true (a restart) the
+  /// caller restores contact history and records, then calls restore_stress().
+  Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings, double time,
+             std::int64_t step, bool forces_valid);
+
+  /// One velocity-Verlet step: half kick, drift and cell strain, contact list refresh if
+  /// needed, forces, half kick, and every control_interval steps a stress measurement and servo update.
+  void step();
+
+  [[nodiscard]] StateMeasures measure() const;
+  /// Recomputes the stress from restored contact records (after a restart).
+  void restore_stress();
+  [[nodiscard]] const Mat3& stress() const { return stress_; } ///< at the last control update
+  [[nodiscard]] double servo_error() const;
+
+  [[nodiscard]] const Particles& particles() const { return particles_; }
+  [[nodiscard]] Particles& particles() { return particles_; }
+  [[nodiscard]] const PeriodicCell& cell() const { return cell_; }
+  [[nodiscard]] const NeighborList& neighbors() const { return neighbors_; }
+  [[nodiscard]] NeighborList& neighbors() { return neighbors_; }
+  [[nodiscard]] const h5::CellState& control() const { return control_; }
+  /// Changes the controller (mode, targets) from the next step on; rates are recomputed now.
+  void set_control(const h5::CellState& control);
+  [[nodiscard]] const SimulationSettings& settings() const { return settings_; }
+  /// Changes the friction coefficient (preparation uses a lower one).
+  void set_friction(double friction) { settings_.material.friction = friction; }
+  /// Changes the contact damping ratio.
+  void set_damping(double ratio) { settings_.material.damping_ratio = ratio; }
+  /// Makes the current lengths the zero-strain reference.
+  void reset_reference_lengths() { cell_ = PeriodicCell(cell_.lengths()); }
+  /// Caps the servo's strain rate [1/s].
+  void set_servo_max_rate(double rate) { settings_.servo.max_rate = rate; }
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] std::int64_t step_count() const { return step_; }
+  [[nodiscard]] double solid_volume() const { return solid_volume_; }
+  /// Captures the cell state (lengths, rates, controller) for a checkpoint.
+  [[nodiscard]] h5::CellState cell_state() const;
+
+private:
+  void compute_forces();
+  void update_control();
+
+  Particles particles_;
+  PeriodicCell cell_;
+  h5::CellState control_;
+  SimulationSettings settings_;
+  NeighborList neighbors_;
+  Mat3 stress_ = Mat3::Zero();
+  double time_ = 0;
+  std::int64_t step_ = 0;
+  double solid_volume_ = 0;
+};
+
+} // namespace aniso::dem
