@@ -12,8 +12,8 @@ namespace {
 void require_positive_lengths(const Vec3& lengths, const char* what) {
   for (int axis = 0; axis < 3; ++axis) {
     if (!(lengths[axis] > 0.0) || !std::isfinite(lengths[axis])) {
-      throw InputError(fmt::format("periodic cell: {} length on axis {} is {}, expected a finite value > 0", what,
-                                   axis + 1, lengths[axis]));
+      throw InputError(fmt::format("periodic cell: {} length on axis {} is {}, expected a finite value > 0",
+                                   what, axis + 1, lengths[axis]));
     }
   }
 }
@@ -34,7 +34,8 @@ Vec3 PeriodicCell::engineering_strain() const {
 
 Vec3 PeriodicCell::logarithmic_strain() const {
   Vec3 strain;
-  for (int axis = 0; axis < 3; ++axis) strain[axis] = std::log(lengths_[axis] / reference_lengths_[axis]);
+  for (int axis = 0; axis < 3; ++axis)
+    strain[axis] = std::log(lengths_[axis] / reference_lengths_[axis]);
   return strain;
 }
 

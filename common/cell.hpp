@@ -30,7 +30,9 @@ public:
   [[nodiscard]] Vec3 wrap(const Vec3& position) const;
   /// Fractional coordinates s = x ./ L, and back.
   [[nodiscard]] Vec3 to_fractional(const Vec3& position) const { return position.cwiseQuotient(lengths_); }
-  [[nodiscard]] Vec3 from_fractional(const Vec3& fractional) const { return fractional.cwiseProduct(lengths_); }
+  [[nodiscard]] Vec3 from_fractional(const Vec3& fractional) const {
+    return fractional.cwiseProduct(lengths_);
+  }
 
   /// Sets new lengths (all positive); affine remapping of particles is the caller's job.
   void set_lengths(const Vec3& lengths);

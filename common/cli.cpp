@@ -51,7 +51,8 @@ ConfigSource load_config(const CommonOptions& options) {
   } else {
     source.name = "defaults";
   }
-  for (const auto& assignment : options.overrides) config::apply_override(source.table, assignment);
+  for (const auto& assignment : options.overrides)
+    config::apply_override(source.table, assignment);
   if (!options.overrides.empty()) source.name += " with --set overrides";
   return source;
 }
@@ -67,7 +68,8 @@ bool finish_config(const config::Reader& reader, const CommonOptions& options, c
 
 std::string join_command_line(int argc, char** argv) {
   std::string line;
-  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 0; i < argc; ++i)
+    line += (i ? " " : "") + std::string(argv[i]);
   return line;
 }
 
@@ -80,8 +82,8 @@ int run(int argc, char** argv, const std::string& program,
     code = body(argc, argv, comm);
   } catch (const Error& error) {
     code = static_cast<int>(error.code());
-    std::cerr << program << rank_tag(comm) << ": error (" << exit_code_name(error.code()) << "): " << error.what()
-              << std::endl;
+    std::cerr << program << rank_tag(comm) << ": error (" << exit_code_name(error.code())
+              << "): " << error.what() << std::endl;
   } catch (const std::exception& error) {
     code = static_cast<int>(ExitCode::internal_error);
     std::cerr << program << rank_tag(comm) << ": internal error: " << error.what() << std::endl;

@@ -23,7 +23,7 @@ struct CommonOptions {
   bool print_config = false;          ///< print the effective configuration and stop
   bool dry_run = false;               ///< validate config and inputs, then stop
   std::string log_level = "info";
-  std::string command_line;           ///< argv joined, for provenance
+  std::string command_line; ///< argv joined, for provenance
 };
 
 /// Adds the shared options and --version to `app`.

@@ -29,7 +29,9 @@ std::string type_name(const toml::node& node) {
   }
 }
 
-std::string format_real(double value) { return fmt::format("{}", value); }
+std::string format_real(double value) {
+  return fmt::format("{}", value);
+}
 
 double as_real(const toml::node& node, std::string_view key, const std::string& source) {
   if (const auto* real = node.as_floating_point()) return real->get();
@@ -67,17 +69,18 @@ std::string Range::describe() const {
                      max_inclusive && !std::isinf(max) ? ']' : ')');
 }
 
-Reader::Reader(toml::table table, std::string source) : table_(std::move(table)), source_(std::move(source)) {}
+Reader::Reader(toml::table table, std::string source)
+    : table_(std::move(table)), source_(std::move(source)) {}
 
 const toml::node* Reader::find(std::string_view key) const {
   const toml::node_view<const toml::node> view = table_.at_path(key);
   return view.node();
 }
 
-void Reader::remember(std::string_view key, std::string value_toml, std::string_view unit, std::string allowed,
-                      std::string_view help) {
-  entries_.push_back({std::string(key), std::move(value_toml), std::string(unit), std::move(allowed),
-                      std::string(help)});
+void Reader::remember(std::string_view key, std::string value_toml, std::string_view unit,
+                      std::string allowed, std::string_view help) {
+  entries_.push_back(
+      {std::string(key), std::move(value_toml), std::string(unit), std::move(allowed), std::string(help)});
 }
 
 double Reader::real(std::string_view key, double fallback, std::string_view unit, Range range,
@@ -86,13 +89,15 @@ double Reader::real(std::string_view key, double fallback, std::string_view unit
   const double value = node ? as_real(*node, key, source_) : fallback;
   if (!range.contains(value)) {
     throw InputError(fmt::format("config key '{}' in {}: value {} {} is out of range, expected {} ({})", key,
-                                 node ? source_ : "defaults", format_real(value), unit, range.describe(), help));
+                                 node ? source_ : "defaults", format_real(value), unit, range.describe(),
+                                 help));
   }
   remember(key, format_real(value), unit, range.describe(), help);
   return value;
 }
 
-std::int64_t Reader::integer(std::string_view key, std::int64_t fallback, Range range, std::string_view help) {
+std::int64_t Reader::integer(std::string_view key, std::int64_t fallback, Range range,
+                             std::string_view help) {
   const toml::node* node = find(key);
   std::int64_t value = fallback;
   if (node) {
@@ -117,8 +122,8 @@ bool Reader::boolean(std::string_view key, bool fallback, std::string_view help)
   if (node) {
     const auto* boolean_node = node->as_boolean();
     if (!boolean_node) {
-      throw InputError(fmt::format("config key '{}' in {}: value {} is {}, expected true or false", key, source_,
-                                   node_text(*node), type_name(*node)));
+      throw InputError(fmt::format("config key '{}' in {}: value {} is {}, expected true or false", key,
+                                   source_, node_text(*node), type_name(*node)));
     }
     value = boolean_node->get();
   }
@@ -126,15 +131,17 @@ bool Reader::boolean(std::string_view key, bool fallback, std::string_view help)
   return value;
 }
 
-std::string Reader::choice(std::string_view key, std::string_view fallback, const std::vector<std::string>& allowed,
-                           std::string_view help) {
+std::string Reader::choice(std::string_view key, std::string_view fallback,
+                           const std::vector<std::string>& allowed, std::string_view help) {
   const std::string value = text(key, fallback, help);
   entries_.pop_back(); // re-recorded below with the allowed words
   std::string words;
-  for (const auto& word : allowed) words += (words.empty() ? "" : " | ") + word;
+  for (const auto& word : allowed)
+    words += (words.empty() ? "" : " | ") + word;
   if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
-    throw InputError(fmt::format("config key '{}' in {}: value \"{}\" is not allowed, expected one of {} ({})", key,
-                                 source_, value, words, help));
+    throw InputError(
+        fmt::format("config key '{}' in {}: value \"{}\" is not allowed, expected one of {} ({})", key,
+                    source_, value, words, help));
   }
   remember(key, fmt::format("\"{}\"", value), "", words, help);
   return value;
@@ -155,28 +162,31 @@ std::string Reader::text(std::string_view key, std::string_view fallback, std::s
   return value;
 }
 
-std::vector<double> Reader::reals(std::string_view key, const std::vector<double>& fallback, std::string_view unit,
-                                  Range range, std::size_t min_count, std::string_view help) {
+std::vector<double> Reader::reals(std::string_view key, const std::vector<double>& fallback,
+                                  std::string_view unit, Range range, std::size_t min_count,
+                                  std::string_view help) {
   const toml::node* node = find(key);
   std::vector<double> values = fallback;
   if (node) {
     const auto* array = node->as_array();
     if (!array) {
-      throw InputError(fmt::format("config key '{}' in {}: value {} is {}, expected an array of real numbers", key,
-                                   source_, node_text(*node), type_name(*node)));
+      throw InputError(fmt::format("config key '{}' in {}: value {} is {}, expected an array of real numbers",
+                                   key, source_, node_text(*node), type_name(*node)));
     }
     values.clear();
-    for (const auto& element : *array) values.push_back(as_real(element, key, source_));
+    for (const auto& element : *array)
+      values.push_back(as_real(element, key, source_));
   }
   if (values.size() < min_count) {
-    throw InputError(fmt::format("config key '{}' in {}: {} values given, expected at least {} ({})", key, source_,
-                                 values.size(), min_count, help));
+    throw InputError(fmt::format("config key '{}' in {}: {} values given, expected at least {} ({})", key,
+                                 source_, values.size(), min_count, help));
   }
   std::string listing;
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!range.contains(values[i])) {
-      throw InputError(fmt::format("config key '{}' in {}: element {} = {} {} is out of range, expected {} ({})",
-                                   key, source_, i, format_real(values[i]), unit, range.describe(), help));
+      throw InputError(
+          fmt::format("config key '{}' in {}: element {} = {} {} is out of range, expected {} ({})", key,
+                      source_, i, format_real(values[i]), unit, range.describe(), help));
     }
     listing += (i ? ", " : "") + format_real(values[i]);
   }
@@ -194,16 +204,19 @@ void Reader::reject_unknown() const {
   std::vector<std::string> unknown;
   for (const auto& key : keys) {
     const std::string section = key.substr(0, key.find('.'));
-    const bool tolerated =
-        key.find('.') != std::string::npos && std::find(tolerated_.begin(), tolerated_.end(), section) != tolerated_.end();
-    const bool known = std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.key == key; });
+    const bool tolerated = key.find('.') != std::string::npos &&
+                           std::find(tolerated_.begin(), tolerated_.end(), section) != tolerated_.end();
+    const bool known =
+        std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.key == key; });
     if (!known && !tolerated) unknown.push_back(key);
   }
   if (unknown.empty()) return;
   std::string listing;
-  for (const auto& key : unknown) listing += (listing.empty() ? "'" : ", '") + key + "'";
-  throw InputError(fmt::format("unknown config key{} {} in {} (--print-config lists the keys this program accepts)",
-                               unknown.size() > 1 ? "s" : "", listing, source_));
+  for (const auto& key : unknown)
+    listing += (listing.empty() ? "'" : ", '") + key + "'";
+  throw InputError(
+      fmt::format("unknown config key{} {} in {} (--print-config lists the keys this program accepts)",
+                  unknown.size() > 1 ? "s" : "", listing, source_));
 }
 
 std::string Reader::effective_toml() const {
@@ -239,7 +252,8 @@ toml::table load_file(const std::string& path) {
     return toml::parse_file(path);
   } catch (const toml::parse_error& error) {
     const auto& where = error.source().begin;
-    if (where.line == 0) throw FileError(fmt::format("cannot read config file '{}': {}", path, error.description()));
+    if (where.line == 0)
+      throw FileError(fmt::format("cannot read config file '{}': {}", path, error.description()));
     throw InputError(fmt::format("config file '{}' line {} column {}: {}", path, where.line, where.column,
                                  error.description()));
   }
@@ -270,7 +284,8 @@ void apply_override(toml::table& table, std::string_view assignment) {
       child = current->get(part);
     }
     if (!child->is_table()) {
-      throw InputError(fmt::format("--set '{}': '{}' is a value, not a table", assignment, key.substr(0, dot)));
+      throw InputError(
+          fmt::format("--set '{}': '{}' is a value, not a table", assignment, key.substr(0, dot)));
     }
     current = child->as_table();
     start = dot + 1;

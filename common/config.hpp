@@ -39,7 +39,8 @@ public:
   Reader(toml::table table, std::string source);
 
   /// Keys are dotted paths such as "dem.material.shear_modulus".
-  double real(std::string_view key, double fallback, std::string_view unit, Range range, std::string_view help);
+  double real(std::string_view key, double fallback, std::string_view unit, Range range,
+              std::string_view help);
   std::int64_t integer(std::string_view key, std::int64_t fallback, Range range, std::string_view help);
   bool boolean(std::string_view key, bool fallback, std::string_view help);
   /// One of a fixed set of words.

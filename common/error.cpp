@@ -6,9 +6,8 @@ namespace aniso {
 
 void check_invariant(bool condition, const char* what, std::source_location where) {
   if (!condition) {
-    throw Error(ExitCode::internal_error,
-                fmt::format("internal error: invariant '{}' violated at {}:{}", what, where.file_name(),
-                            where.line()));
+    throw Error(ExitCode::internal_error, fmt::format("internal error: invariant '{}' violated at {}:{}",
+                                                      what, where.file_name(), where.line()));
   }
 }
 

@@ -23,7 +23,7 @@ void ExactSum::add(double term) {
   }
   if (term == 0.0) return;
   int exponent = 0;
-  const double fraction = std::frexp(std::fabs(term), &exponent); // term = fraction * 2^exponent
+  const double fraction = std::frexp(std::fabs(term), &exponent);             // term = fraction * 2^exponent
   const auto mantissa = static_cast<std::uint64_t>(std::ldexp(fraction, 53)); // exact: 53 bits
   const int position = exponent - 53 + offset;
   const int limb = position / digit_bits;
@@ -31,7 +31,8 @@ void ExactSum::add(double term) {
   const uint128 shifted = static_cast<uint128>(mantissa) << shift;
   const std::int64_t sign = term < 0 ? -1 : 1;
   for (int d = 0; d < 3; ++d) {
-    const auto digit = static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted >> (32 * d)) & digit_mask);
+    const auto digit =
+        static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted >> (32 * d)) & digit_mask);
     limbs_[limb + d] += sign * digit;
   }
   if (++pending_ >= normalize_every) normalize();
@@ -40,7 +41,8 @@ void ExactSum::add(double term) {
 void ExactSum::add(const ExactSum& other) {
   const Limbs theirs = other.normalized_limbs();
   normalize();
-  for (int k = 0; k < n_limbs; ++k) limbs_[k] += theirs[k];
+  for (int k = 0; k < n_limbs; ++k)
+    limbs_[k] += theirs[k];
   nonfinite_ = nonfinite_ || other.nonfinite_;
   normalize();
 }
@@ -75,11 +77,13 @@ double ExactSum::value() const {
   magnitude.normalize();
   const bool negative = magnitude.limbs_[n_limbs - 1] < 0;
   if (negative) {
-    for (auto& limb : magnitude.limbs_) limb = -limb;
+    for (auto& limb : magnitude.limbs_)
+      limb = -limb;
     magnitude.normalize();
   }
   int top = n_limbs - 1;
-  while (top >= 0 && magnitude.limbs_[top] == 0) --top;
+  while (top >= 0 && magnitude.limbs_[top] == 0)
+    --top;
   if (top < 0) return 0.0;
   // Take 96 bits below and including the top digit; fold the rest into a sticky
   // bit so the conversion rounds to nearest as if it had seen every bit.
@@ -89,7 +93,8 @@ double ExactSum::value() const {
     if (k >= 0) head |= static_cast<std::uint64_t>(magnitude.limbs_[k]);
   }
   bool sticky = false;
-  for (int k = top - 3; k >= 0; --k) sticky = sticky || magnitude.limbs_[k] != 0;
+  for (int k = top - 3; k >= 0; --k)
+    sticky = sticky || magnitude.limbs_[k] != 0;
   if (sticky) head |= 1;
   const double result = std::ldexp(static_cast<double>(head), digit_bits * (top - 2) - offset);
   return negative ? -result : result;

@@ -2,10 +2,9 @@
 
 #include "common/error.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
-
-#include <fmt/format.h>
 
 #include <cmath>
 
@@ -14,7 +13,8 @@ namespace aniso {
 Logger make_logger(const std::string& program, const mpi::Comm& comm, const std::string& level_name) {
   const auto level = spdlog::level::from_str(level_name);
   if (level == spdlog::level::off && level_name != "off") {
-    throw InputError(fmt::format("log level '{}' is not one of trace, debug, info, warn, error, off", level_name));
+    throw InputError(
+        fmt::format("log level '{}' is not one of trace, debug, info, warn, error, off", level_name));
   }
   Logger logger;
   if (comm.is_root()) {
@@ -53,8 +53,8 @@ std::string Progress::line(double done) const {
   const double elapsed = clock_() - start_;
   const double fraction = total_ > 0 ? done / total_ : 0.0;
   const double remaining = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : NAN;
-  return fmt::format("{}: {:.1f}% ({:.4g} of {:.4g}), elapsed {}, ETA {}", label_, 100.0 * fraction, done, total_,
-                     format_duration(elapsed), format_duration(remaining));
+  return fmt::format("{}: {:.1f}% ({:.4g} of {:.4g}), elapsed {}, ETA {}", label_, 100.0 * fraction, done,
+                     total_, format_duration(elapsed), format_duration(remaining));
 }
 
 bool Progress::update(double done) {

@@ -31,7 +31,8 @@ public:
   /// Reports "label: done/total" at most every `interval_seconds` of wall-clock time.
   Progress(Logger logger, std::string label, double total, double interval_seconds, Clock clock = {});
 
-  /// Records progress `done` (same unit as total) and prints if the interval has passed. Returns true if printed.
+  /// Records progress `done` (same unit as total) and prints if the interval has passed. Returns true if
+  /// printed.
   bool update(double done);
   /// The line that update() would print for `done` now (for tests).
   [[nodiscard]] std::string line(double done) const;

@@ -27,7 +27,9 @@ Environment::~Environment() {
   if (!finalized) MPI_Finalize();
 }
 
-Comm Comm::world() { return Comm(MPI_COMM_WORLD); }
+Comm Comm::world() {
+  return Comm(MPI_COMM_WORLD);
+}
 
 int Comm::rank() const {
   int value = 0;
@@ -51,7 +53,9 @@ void Comm::free() {
   if (raw_ != MPI_COMM_NULL && raw_ != MPI_COMM_WORLD && raw_ != MPI_COMM_SELF) MPI_Comm_free(&raw_);
 }
 
-void Comm::barrier() const { check(MPI_Barrier(raw_), "MPI_Barrier"); }
+void Comm::barrier() const {
+  check(MPI_Barrier(raw_), "MPI_Barrier");
+}
 
 double Comm::sum_exact(double local) const {
   ExactSum sum;
@@ -61,10 +65,12 @@ double Comm::sum_exact(double local) const {
 
 std::vector<double> Comm::sum_exact(std::span<const double> local) const {
   std::vector<ExactSum> sums(local.size());
-  for (std::size_t i = 0; i < local.size(); ++i) sums[i].add(local[i]);
+  for (std::size_t i = 0; i < local.size(); ++i)
+    sums[i].add(local[i]);
   const std::vector<ExactSum> reduced = sum_exact(std::span<const ExactSum>(sums));
   std::vector<double> result(local.size());
-  for (std::size_t i = 0; i < local.size(); ++i) result[i] = reduced[i].value();
+  for (std::size_t i = 0; i < local.size(); ++i)
+    result[i] = reduced[i].value();
   return result;
 }
 
@@ -83,8 +89,9 @@ std::vector<ExactSum> Comm::sum_exact(std::span<const ExactSum> local) const {
     packed[i * stride + n_limbs] = local[i].nonfinite() ? 1 : 0;
   }
   // Normalized limbs are below 2^32, so an integer sum over any realistic rank count cannot overflow.
-  check(MPI_Allreduce(MPI_IN_PLACE, packed.data(), static_cast<int>(packed.size()), MPI_INT64_T, MPI_SUM, raw_),
-        "MPI_Allreduce (exact sum)");
+  check(
+      MPI_Allreduce(MPI_IN_PLACE, packed.data(), static_cast<int>(packed.size()), MPI_INT64_T, MPI_SUM, raw_),
+      "MPI_Allreduce (exact sum)");
   std::vector<ExactSum> result(n_values);
   for (std::size_t i = 0; i < n_values; ++i) {
     ExactSum::Limbs limbs{};
@@ -102,8 +109,9 @@ std::int64_t Comm::sum(std::int64_t local) const {
 
 std::vector<std::int64_t> Comm::sum(std::span<const std::int64_t> local) const {
   std::vector<std::int64_t> result(local.begin(), local.end());
-  check(MPI_Allreduce(MPI_IN_PLACE, result.data(), static_cast<int>(result.size()), MPI_INT64_T, MPI_SUM, raw_),
-        "MPI_Allreduce (sum)");
+  check(
+      MPI_Allreduce(MPI_IN_PLACE, result.data(), static_cast<int>(result.size()), MPI_INT64_T, MPI_SUM, raw_),
+      "MPI_Allreduce (sum)");
   return result;
 }
 

@@ -7,7 +7,9 @@ namespace {
 
 __extension__ using uint128 = unsigned __int128; // GCC/Clang extension, exact 128-bit products
 
-constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+constexpr std::uint64_t rotl(std::uint64_t x, int k) {
+  return (x << k) | (x >> (64 - k));
+}
 
 } // namespace
 
@@ -22,7 +24,8 @@ RandomStream::RandomStream(std::uint64_t seed, std::uint64_t stream_id) {
   std::uint64_t mixer = seed;
   std::uint64_t id_mixer = stream_id ^ 0x5851f42d4c957f2dULL;
   mixer ^= splitmix64(id_mixer);
-  for (auto& word : state_) word = splitmix64(mixer);
+  for (auto& word : state_)
+    word = splitmix64(mixer);
   if ((state_[0] | state_[1] | state_[2] | state_[3]) == 0) state_[0] = 1; // all-zero state is a fixed point
 }
 
@@ -44,9 +47,13 @@ std::uint64_t RandomStream::next() {
   return result;
 }
 
-double RandomStream::uniform01() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+double RandomStream::uniform01() {
+  return static_cast<double>(next() >> 11) * 0x1.0p-53;
+}
 
-double RandomStream::uniform(double low, double high) { return low + (high - low) * uniform01(); }
+double RandomStream::uniform(double low, double high) {
+  return low + (high - low) * uniform01();
+}
 
 std::uint64_t RandomStream::below(std::uint64_t n) {
   uint128 product = static_cast<uint128>(next()) * n;

@@ -4,9 +4,8 @@
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
 
-#include <hdf5.h>
-
 #include <fmt/format.h>
+#include <hdf5.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -34,18 +33,19 @@ int run_pending_stage(int argc, char** argv, const mpi::Comm& comm, const Pendin
 
   if (stage.input_kind == InputKind::checkpoint) {
     const auto checkpoint = h5::read_checkpoint(input, comm);
-    logger->info("input '{}' is a valid checkpoint: {} particles, {} contacts", input, checkpoint.particles.size(),
-                 checkpoint.contacts.size());
+    logger->info("input '{}' is a valid checkpoint: {} particles, {} contacts", input,
+                 checkpoint.particles.size(), checkpoint.contacts.size());
   } else {
     require_file(std::filesystem::is_regular_file(input), fmt::format("input '{}' does not exist", input));
     require_file(H5Fis_hdf5(input.c_str()) > 0, fmt::format("input '{}' is not an HDF5 file", input));
     logger->info("input '{}' is an HDF5 file", input);
   }
   if (options.dry_run) return 0;
-  throw Error(ExitCode::internal_error,
-              fmt::format("{}: this stage is not built yet (issue {}); only --dry-run validation is available in "
-                          "this version",
-                          stage.program, stage.issue));
+  throw Error(
+      ExitCode::internal_error,
+      fmt::format("{}: this stage is not built yet (issue {}); only --dry-run validation is available in "
+                  "this version",
+                  stage.program, stage.issue));
 }
 
 } // namespace aniso::cli

@@ -17,7 +17,7 @@ struct PendingStage {
   std::string description; ///< one line for --help
   std::string section;     ///< its config table, e.g. "fabric"
   InputKind input_kind = InputKind::checkpoint;
-  int issue = 0;           ///< the issue that builds it
+  int issue = 0; ///< the issue that builds it
 };
 
 /// Returns the exit code: 0 after --help, --version, --print-config or a successful --dry-run.

@@ -6,9 +6,13 @@
 
 namespace aniso {
 
-Mat3 deviator(const Mat3& tensor) { return tensor - (tensor.trace() / 3.0) * Mat3::Identity(); }
+Mat3 deviator(const Mat3& tensor) {
+  return tensor - (tensor.trace() / 3.0) * Mat3::Identity();
+}
 
-double mean_stress_compression_positive(const Mat3& sigma) { return -sigma.trace() / 3.0; }
+double mean_stress_compression_positive(const Mat3& sigma) {
+  return -sigma.trace() / 3.0;
+}
 
 double deviatoric_q(const Mat3& sigma) {
   const Mat3 s = deviator(sigma);
@@ -18,7 +22,8 @@ double deviatoric_q(const Mat3& sigma) {
 SortedEigen sorted_eigen(const Mat3& symmetric) {
   const Mat3 sym = 0.5 * (symmetric + symmetric.transpose());
   Eigen::SelfAdjointEigenSolver<Mat3> solver(sym);
-  if (solver.info() != Eigen::Success) throw NumericalError("eigen-decomposition of a symmetric tensor failed");
+  if (solver.info() != Eigen::Success)
+    throw NumericalError("eigen-decomposition of a symmetric tensor failed");
   SortedEigen result;
   // Eigen returns ascending order.
   for (int k = 0; k < 3; ++k) {
@@ -40,7 +45,8 @@ std::array<double, 2> axis_anisotropy(const Mat3& tensor) {
 
 Eigen::Matrix<double, 6, 1> to_voigt(const Mat3& symmetric) {
   Eigen::Matrix<double, 6, 1> voigt;
-  voigt << symmetric(0, 0), symmetric(1, 1), symmetric(2, 2), symmetric(1, 2), symmetric(0, 2), symmetric(0, 1);
+  voigt << symmetric(0, 0), symmetric(1, 1), symmetric(2, 2), symmetric(1, 2), symmetric(0, 2),
+      symmetric(0, 1);
   return voigt;
 }
 

@@ -11,7 +11,8 @@ Vec3 axial_stiffness(const NeighborList& neighbors, double volume) {
   Vec3 stiffness = Vec3::Zero();
   for (const ContactRecord& record : neighbors.records()) {
     if (record.overlap <= 0) continue;
-    const double normal_stiffness = 1.5 * record.normal_force / record.overlap; // Hertz: dF/d delta = 3F/(2 delta)
+    const double normal_stiffness =
+        1.5 * record.normal_force / record.overlap; // Hertz: dF/d delta = 3F/(2 delta)
     const Vec3 d = record.distance * record.normal;
     stiffness += normal_stiffness * record.normal.cwiseProduct(record.normal).cwiseProduct(d.cwiseProduct(d));
   }
@@ -49,7 +50,8 @@ Vec3 update_strain_rates(h5::CellState& state, const Mat3& stress, const Vec3& s
 }
 
 double servo_error(const h5::CellState& state, const Mat3& stress) {
-  if (state.hold_mean_stress) return (-stress.trace() / 3.0 - state.mean_stress_target) / state.mean_stress_target;
+  if (state.hold_mean_stress)
+    return (-stress.trace() / 3.0 - state.mean_stress_target) / state.mean_stress_target;
   double worst = 0;
   for (int a = 0; a < 3; ++a) {
     if (state.mode[a] == AxisMode::stress && state.target[a] != 0) {

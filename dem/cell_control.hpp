@@ -14,8 +14,8 @@
 namespace aniso::dem {
 
 struct ServoSettings {
-  double gain = 0.2;     ///< fraction of the stress error removed per update (0, 1]
-  double max_rate = 0;   ///< cap on |strain rate| of servoed axes [1/s]
+  double gain = 0.2;   ///< fraction of the stress error removed per update (0, 1]
+  double max_rate = 0; ///< cap on |strain rate| of servoed axes [1/s]
 };
 
 /// Constrained modulus of the contact network along each axis,

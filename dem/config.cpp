@@ -11,7 +11,8 @@ using config::Range;
 
 DemConfig read_dem_config(config::Reader& reader) {
   DemConfig c;
-  c.seed = static_cast<std::uint64_t>(reader.integer("dem.seed", 1, Range::non_negative(), "seed of every random stream"));
+  c.seed = static_cast<std::uint64_t>(
+      reader.integer("dem.seed", 1, Range::non_negative(), "seed of every random stream"));
   c.output_dir = reader.text("dem.output_dir", ".", "folder for checkpoints and history");
 
   auto& p = c.particles;
@@ -20,40 +21,48 @@ DemConfig read_dem_config(config::Reader& reader) {
                                "smallest diameter (mid-plane diameter for ovoids)");
   p.diameter_max = reader.real("dem.particles.diameter_max", p.diameter_max, units::metre, Range::positive(),
                                "largest diameter");
-  p.d50 = reader.real("dem.particles.d50", p.d50, units::metre, Range::positive(), "median diameter by volume");
-  p.aspect_ratio = reader.real("dem.particles.aspect_ratio", p.aspect_ratio, units::none, Range::open_closed(0.2, 1.0),
-                               "axial height / mid-plane diameter (paper: 1, 0.8, 0.625, 0.5)");
-  p.density = reader.real("dem.particles.density", p.density, units::density, Range::positive(), "solid density");
-  require_input(p.diameter_min < p.d50 && p.d50 < p.diameter_max,
-                fmt::format("config: need dem.particles.diameter_min < d50 < diameter_max, got {} < {} < {} m",
-                            p.diameter_min, p.d50, p.diameter_max));
+  p.d50 =
+      reader.real("dem.particles.d50", p.d50, units::metre, Range::positive(), "median diameter by volume");
+  p.aspect_ratio =
+      reader.real("dem.particles.aspect_ratio", p.aspect_ratio, units::none, Range::open_closed(0.2, 1.0),
+                  "axial height / mid-plane diameter (paper: 1, 0.8, 0.625, 0.5)");
+  p.density =
+      reader.real("dem.particles.density", p.density, units::density, Range::positive(), "solid density");
+  require_input(
+      p.diameter_min < p.d50 && p.d50 < p.diameter_max,
+      fmt::format("config: need dem.particles.diameter_min < d50 < diameter_max, got {} < {} < {} m",
+                  p.diameter_min, p.d50, p.diameter_max));
 
   auto& m = c.material;
-  m.shear_modulus = reader.real("dem.material.shear_modulus", m.shear_modulus, units::pascal, Range::positive(),
-                                "particle shear modulus G");
-  m.poisson_ratio = reader.real("dem.material.poisson_ratio", m.poisson_ratio, units::none, Range::open(-1.0, 0.5),
-                                "particle Poisson ratio");
+  m.shear_modulus = reader.real("dem.material.shear_modulus", m.shear_modulus, units::pascal,
+                                Range::positive(), "particle shear modulus G");
+  m.poisson_ratio = reader.real("dem.material.poisson_ratio", m.poisson_ratio, units::none,
+                                Range::open(-1.0, 0.5), "particle Poisson ratio");
   m.friction = reader.real("dem.material.friction", m.friction, units::none, Range::non_negative(),
                            "inter-particle friction for consolidation and loading");
   m.friction_prepare = reader.real("dem.material.friction_prepare", m.friction_prepare, units::none,
                                    Range::non_negative(), "inter-particle friction during compaction cycles");
 
   auto& i = c.integration;
-  i.time_step_fraction = reader.real("dem.integration.time_step_fraction", i.time_step_fraction, units::none,
-                                     Range::open_closed(0.0, 1.0),
-                                     "time step as a fraction of the Rayleigh critical step of the smallest particle");
-  i.time_step = reader.real("dem.integration.time_step", i.time_step, units::second, Range::non_negative(),
-                            "explicit time step (0: from time_step_fraction); refused above the critical step");
+  i.time_step_fraction = reader.real(
+      "dem.integration.time_step_fraction", i.time_step_fraction, units::none, Range::open_closed(0.0, 1.0),
+      "time step as a fraction of the Rayleigh critical step of the smallest particle");
+  i.time_step =
+      reader.real("dem.integration.time_step", i.time_step, units::second, Range::non_negative(),
+                  "explicit time step (0: from time_step_fraction); refused above the critical step");
   i.damping = reader.real("dem.integration.damping", i.damping, units::none, Range::closed(0.0, 1.0),
                           "viscous contact damping ratio during loading");
   i.skin = reader.real("dem.integration.skin", i.skin, units::none, Range::open_closed(0.0, 1.0),
                        "neighbour-list skin in units of D50");
-  i.control_interval = reader.integer("dem.integration.control_interval", i.control_interval, Range::closed(1, 1e6),
-                                      "steps between stress measurements and servo updates");
-  i.servo_gain = reader.real("dem.integration.servo_gain", i.servo_gain, units::none, Range::open_closed(0.0, 1.0),
-                             "fraction of the stress error removed per servo update");
-  i.explosion_overlap = reader.real("dem.integration.explosion_overlap", i.explosion_overlap, units::none,
-                                    Range::open(0.0, 1.0), "stop when an overlap exceeds this fraction of a radius");
+  i.control_interval =
+      reader.integer("dem.integration.control_interval", i.control_interval, Range::closed(1, 1e6),
+                     "steps between stress measurements and servo updates");
+  i.servo_gain =
+      reader.real("dem.integration.servo_gain", i.servo_gain, units::none, Range::open_closed(0.0, 1.0),
+                  "fraction of the stress error removed per servo update");
+  i.explosion_overlap =
+      reader.real("dem.integration.explosion_overlap", i.explosion_overlap, units::none,
+                  Range::open(0.0, 1.0), "stop when an overlap exceeds this fraction of a radius");
 
   auto& pr = c.prepare;
   pr.cell_aspect = reader.reals("dem.prepare.cell_aspect", pr.cell_aspect, units::none, Range::positive(), 3,
@@ -61,10 +70,13 @@ DemConfig read_dem_config(config::Reader& reader) {
   require_input(pr.cell_aspect.size() == 3,
                 fmt::format("config key 'dem.prepare.cell_aspect': {} values given, expected exactly 3",
                             pr.cell_aspect.size()));
-  pr.initial_solid_fraction = reader.real("dem.prepare.initial_solid_fraction", pr.initial_solid_fraction,
-                                          units::none, Range::open(0.0, 0.4), "solid fraction of the sparse start");
-  require_input(pr.seize_stress < pr.confining_pressure, "config: dem.prepare.seize_stress must be below confining_pressure");
-  pr.cycles = reader.integer("dem.prepare.cycles", pr.cycles, Range::closed(1, 1000), "compaction cycles (paper: 14)");
+  pr.initial_solid_fraction =
+      reader.real("dem.prepare.initial_solid_fraction", pr.initial_solid_fraction, units::none,
+                  Range::open(0.0, 0.4), "solid fraction of the sparse start");
+  require_input(pr.seize_stress < pr.confining_pressure,
+                "config: dem.prepare.seize_stress must be below confining_pressure");
+  pr.cycles = reader.integer("dem.prepare.cycles", pr.cycles, Range::closed(1, 1000),
+                             "compaction cycles (paper: 14)");
   pr.target_void_ratio = reader.real("dem.prepare.target_void_ratio", pr.target_void_ratio, units::none,
                                      Range::positive(), "keep the assembly nearest this void ratio");
   pr.confining_pressure = reader.real("dem.prepare.confining_pressure", pr.confining_pressure, units::pascal,
@@ -77,20 +89,22 @@ DemConfig read_dem_config(config::Reader& reader) {
                                 "mean stress at which a compacting assembly counts as seized");
   pr.agitation_speed = reader.real("dem.prepare.agitation_speed", pr.agitation_speed, units::none,
                                    Range::non_negative(), "rms random speed between cycles, in sqrt(p0/rho)");
-  pr.consolidation_tolerance = reader.real("dem.prepare.consolidation_tolerance", pr.consolidation_tolerance,
-                                           units::none, Range::open(0.0, 0.5), "|p - p0|/p0 to end consolidation");
+  pr.consolidation_tolerance =
+      reader.real("dem.prepare.consolidation_tolerance", pr.consolidation_tolerance, units::none,
+                  Range::open(0.0, 0.5), "|p - p0|/p0 to end consolidation");
 
   auto& l = c.load;
-  l.inertial_number = reader.real("dem.load.inertial_number", l.inertial_number, units::none, Range::open(0.0, 1.0),
-                                  "I = strain rate * D50 * sqrt(density / p)");
-  l.final_strain = reader.real("dem.load.final_strain", l.final_strain, units::none, Range::open_closed(0.0, 0.9),
-                               "final compressive strain -eps11");
+  l.inertial_number = reader.real("dem.load.inertial_number", l.inertial_number, units::none,
+                                  Range::open(0.0, 1.0), "I = strain rate * D50 * sqrt(density / p)");
+  l.final_strain = reader.real("dem.load.final_strain", l.final_strain, units::none,
+                               Range::open_closed(0.0, 0.9), "final compressive strain -eps11");
   l.mean_stress = reader.real("dem.load.mean_stress", l.mean_stress, units::pascal, Range::positive(),
                               "mean stress held during loading");
-  l.checkpoint_strains = reader.reals("dem.load.checkpoint_strains", {}, units::none, Range::open_closed(0.0, 0.9), 0,
-                                      "compressive strains -eps11 at which checkpoints are written");
-  l.history_interval = reader.real("dem.load.history_interval", l.history_interval, units::none, Range::positive(),
-                                   "strain between history rows");
+  l.checkpoint_strains =
+      reader.reals("dem.load.checkpoint_strains", {}, units::none, Range::open_closed(0.0, 0.9), 0,
+                   "compressive strains -eps11 at which checkpoints are written");
+  l.history_interval = reader.real("dem.load.history_interval", l.history_interval, units::none,
+                                   Range::positive(), "strain between history rows");
   return c;
 }
 

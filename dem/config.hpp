@@ -33,29 +33,29 @@ struct IntegrationConfig {
   double damping = 0.0;            ///< viscous contact damping ratio during loading (see docs/methods/dem.md)
   double skin = 0.1;               ///< neighbour-list skin in units of D50
   std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
-  double servo_gain = 0.2;         ///< fraction of the stress error removed per servo update
-  double explosion_overlap = 0.05; ///< stop when an overlap exceeds this fraction of the smaller radius
+  double servo_gain = 0.2;            ///< fraction of the stress error removed per servo update
+  double explosion_overlap = 0.05;    ///< stop when an overlap exceeds this fraction of the smaller radius
 };
 
 struct PrepareConfig {
   std::vector<double> cell_aspect{1.5, 1.0, 1.0}; ///< L1:L2:L3 of the cell
-  double initial_solid_fraction = 0.25; ///< sparse random arrangement
-  std::int64_t cycles = 14;             ///< compaction cycles
-  double target_void_ratio = 0.556;     ///< keep the cycle nearest this
-  double confining_pressure = 100e3;    ///< p0 [Pa]
-  double inertial_number = 1e-2;       ///< compaction and consolidation rate, I at p0
-  double damping = 0.3;                ///< contact damping ratio while compacting
-  double seize_stress = 1e3;           ///< p at which a compacting assembly counts as seized [Pa]
-  double agitation_speed = 0.05;       ///< rms random speed between cycles, in units of sqrt(p0/rho)
+  double initial_solid_fraction = 0.25;           ///< sparse random arrangement
+  std::int64_t cycles = 14;                       ///< compaction cycles
+  double target_void_ratio = 0.556;               ///< keep the cycle nearest this
+  double confining_pressure = 100e3;              ///< p0 [Pa]
+  double inertial_number = 1e-2;                  ///< compaction and consolidation rate, I at p0
+  double damping = 0.3;                           ///< contact damping ratio while compacting
+  double seize_stress = 1e3;                      ///< p at which a compacting assembly counts as seized [Pa]
+  double agitation_speed = 0.05;          ///< rms random speed between cycles, in units of sqrt(p0/rho)
   double consolidation_tolerance = 0.005; ///< |p - p0| / p0 at the end of consolidation
 };
 
 struct LoadConfig {
-  double inertial_number = 1e-3;      ///< sets the strain rate: I = rate D50 sqrt(rho / p)
-  double final_strain = 0.2;          ///< compressive eps11 magnitude at the end
-  double mean_stress = 100e3;         ///< p held constant [Pa]
+  double inertial_number = 1e-3;          ///< sets the strain rate: I = rate D50 sqrt(rho / p)
+  double final_strain = 0.2;              ///< compressive eps11 magnitude at the end
+  double mean_stress = 100e3;             ///< p held constant [Pa]
   std::vector<double> checkpoint_strains; ///< compressive strains at which to write checkpoints
-  double history_interval = 1e-4;     ///< strain between history rows
+  double history_interval = 1e-4;         ///< strain between history rows
 };
 
 struct DemConfig {

@@ -3,7 +3,7 @@
 // (paper section 2: "Hertz-Mindlin interactions ... no contact bonding or
 // rotational resistance"), plus optional viscous contact damping. Stateless
 // functions: the only memory, the tangential spring, is passed in and updated.
-// Formulas and references: docs/methods/dem.md#contact-law.
+// Formulas and references: docs/methods/dem-contact-law.md.
 
 #include "common/tensor.hpp"
 
@@ -25,10 +25,10 @@ struct PairProperties {
 
 /// What the narrow phase and the integrator know about the contact this step.
 struct ContactKinematics {
-  Vec3 normal;             ///< unit normal pointing from particle i to particle j
-  double overlap = 0;      ///< > 0 when touching [m]
-  Vec3 relative_velocity;  ///< velocity of j's surface relative to i's at the contact point [m/s]
-  double time_step = 0;    ///< [s]
+  Vec3 normal;            ///< unit normal pointing from particle i to particle j
+  double overlap = 0;     ///< > 0 when touching [m]
+  Vec3 relative_velocity; ///< velocity of j's surface relative to i's at the contact point [m/s]
+  double time_step = 0;   ///< [s]
 };
 
 /// The history of one contact: the tangential spring and whether it slides.
@@ -38,10 +38,10 @@ struct ContactHistory {
 };
 
 struct ContactForce {
-  Vec3 force_on_i = Vec3::Zero(); ///< total force on i from j (j receives the opposite) [N]
-  double normal_force = 0;        ///< elastic normal force magnitude, > 0 is compressive [N]
-  double normal_stiffness = 0;    ///< dF_n / d overlap [N/m]
-  double tangential_stiffness = 0;///< Mindlin no-slip stiffness [N/m]
+  Vec3 force_on_i = Vec3::Zero();  ///< total force on i from j (j receives the opposite) [N]
+  double normal_force = 0;         ///< elastic normal force magnitude, > 0 is compressive [N]
+  double normal_stiffness = 0;     ///< dF_n / d overlap [N/m]
+  double tangential_stiffness = 0; ///< Mindlin no-slip stiffness [N/m]
 };
 
 /// E* = E / (2 (1 - nu^2)) = G / (1 - nu) for two particles of one material.

@@ -5,7 +5,8 @@
 namespace aniso::dem {
 
 std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
-                                    const ContactMaterial& material, double time_step, NeighborList& neighbors) {
+                                    const ContactMaterial& material, double time_step,
+                                    NeighborList& neighbors) {
   for (std::size_t k = 0; k < particles.size(); ++k) {
     particles.force[k].setZero();
     particles.torque[k].setZero();
@@ -19,7 +20,8 @@ std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& ce
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const std::uint32_t i = pairs[k].i, j = pairs[k].j;
     Vec3 d = particles.position[j] - particles.position[i];
-    for (int a = 0; a < 3; ++a) d[a] -= lengths[a] * std::nearbyint(d[a] * inverse_lengths[a]);
+    for (int a = 0; a < 3; ++a)
+      d[a] -= lengths[a] * std::nearbyint(d[a] * inverse_lengths[a]);
     const double radius_sum = particles.radius[i] + particles.radius[j];
     const double distance_squared = d.squaredNorm();
     ContactRecord& record = records[k];

@@ -14,6 +14,7 @@ namespace aniso::dem {
 /// cell's diagonal rate, which adds the affine part to relative velocities.
 /// Returns the number of touching pairs.
 std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
-                                    const ContactMaterial& material, double time_step, NeighborList& neighbors);
+                                    const ContactMaterial& material, double time_step,
+                                    NeighborList& neighbors);
 
 } // namespace aniso::dem

@@ -17,7 +17,8 @@ const std::vector<HistoryColumn>& history_columns() {
   static const std::vector<HistoryColumn> columns{
       {"step", units::none, "time steps since the start of preparation"},
       {"time", units::second, "simulated time"},
-      {"strain_11", units::none, "engineering strain of axis 1 since the start of loading, extension positive"},
+      {"strain_11", units::none,
+       "engineering strain of axis 1 since the start of loading, extension positive"},
       {"strain_22", units::none, "engineering strain of axis 2"},
       {"strain_33", units::none, "engineering strain of axis 3"},
       {"volumetric_strain", units::none, "(V - V0)/V0, dilation positive"},
@@ -29,7 +30,8 @@ const std::vector<HistoryColumn>& history_columns() {
       {"stress_12", units::pascal, "average stress"},
       {"p", units::pascal, "mean stress, compression positive"},
       {"q", units::pascal, "sqrt(3 J2)"},
-      {"stress_ratio", units::none, "(sigma_11 - sigma_33)/p with compression positive stresses (paper Fig. 3a)"},
+      {"stress_ratio", units::none,
+       "(sigma_11 - sigma_33)/p with compression positive stresses (paper Fig. 3a)"},
       {"void_ratio", units::none, "(V - V_solid)/V_solid"},
       {"coordination", units::none, "2 N_c / N"},
       {"coordination_no_rattlers", units::none, "2 N_c / N without particles of fewer than 4 contacts"},
@@ -45,7 +47,8 @@ History::History() : columns_(history_columns().size()) {}
 
 void History::append(const std::vector<double>& row) {
   check_invariant(row.size() == columns_.size(), "history row has one value per column");
-  for (std::size_t c = 0; c < row.size(); ++c) columns_[c].push_back(row[c]);
+  for (std::size_t c = 0; c < row.size(); ++c)
+    columns_[c].push_back(row[c]);
 }
 
 const std::vector<double>& History::column(const std::string& name) const {
@@ -58,9 +61,10 @@ const std::vector<double>& History::column(const std::string& name) const {
 
 void History::truncate_after_step(double step) {
   const auto& steps = columns_[0];
-  const auto keep = static_cast<std::size_t>(std::find_if(steps.begin(), steps.end(), [&](double s) { return s > step; }) -
-                                             steps.begin());
-  for (auto& column : columns_) column.resize(keep);
+  const auto keep = static_cast<std::size_t>(
+      std::find_if(steps.begin(), steps.end(), [&](double s) { return s > step; }) - steps.begin());
+  for (auto& column : columns_)
+    column.resize(keep);
 }
 
 void History::write(const std::string& folder, const h5::Provenance& provenance) const {
@@ -85,10 +89,12 @@ void History::write(const std::string& folder, const h5::Provenance& provenance)
   const std::string temp = folder + "/.history.csv.tmp";
   {
     std::ofstream out(temp);
-    for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c].name;
+    for (std::size_t c = 0; c < names.size(); ++c)
+      out << (c ? "," : "") << names[c].name;
     out << '\n';
     for (std::size_t r = 0; r < size(); ++r) {
-      for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << fmt::format("{:.17g}", columns_[c][r]);
+      for (std::size_t c = 0; c < names.size(); ++c)
+        out << (c ? "," : "") << fmt::format("{:.17g}", columns_[c][r]);
       out << '\n';
     }
     if (!out) throw FileError(fmt::format("cannot write '{}'", temp));
@@ -104,7 +110,8 @@ History History::read(const std::string& folder) {
   History history;
   const auto& names = history_columns();
   const auto n_rows = group.open_dataset("step").read<double>().size();
-  for (std::size_t c = 0; c < names.size(); ++c) history.columns_[c] = group.read_dataset<double>(names[c].name, {n_rows});
+  for (std::size_t c = 0; c < names.size(); ++c)
+    history.columns_[c] = group.read_dataset<double>(names[c].name, {n_rows});
   return history;
 }
 

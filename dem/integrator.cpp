@@ -34,9 +34,10 @@ double critical_time_step(const Particles& particles, double density, const Cont
 
 void require_stable_time_step(double time_step, double critical) {
   if (!(time_step > 0) || time_step > critical) {
-    throw NumericalError(fmt::format("time step {:.4g} s is above the Rayleigh critical step {:.4g} s of the smallest "
-                                     "particle: lower dem.integration.time_step_fraction (now {:.3g} of critical)",
-                                     time_step, critical, time_step / critical));
+    throw NumericalError(
+        fmt::format("time step {:.4g} s is above the Rayleigh critical step {:.4g} s of the smallest "
+                    "particle: lower dem.integration.time_step_fraction (now {:.3g} of critical)",
+                    time_step, critical, time_step / critical));
   }
 }
 

@@ -43,7 +43,8 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
     const Vec3 branch = records[k].distance * records[k].normal;
     const Vec3 raw = p.position[j] - p.position[i];
     Vec3i shift;
-    for (int a = 0; a < 3; ++a) shift[a] = static_cast<int>(std::nearbyint((branch[a] - raw[a]) / lengths[a]));
+    for (int a = 0; a < 3; ++a)
+      shift[a] = static_cast<int>(std::nearbyint((branch[a] - raw[a]) / lengths[a]));
     c.contacts.particles.push_back({p.id[i], p.id[j]});
     c.contacts.image_shift.push_back(shift);
     c.contacts.normal.push_back(records[k].normal);
@@ -106,7 +107,8 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
     particles.torque[k] = rows.torque[k];
   }
   const SimulationSettings settings = settings_from_checkpoint(checkpoint, path);
-  Simulation simulation(std::move(particles), checkpoint.cell, settings, checkpoint.time, checkpoint.step, true);
+  Simulation simulation(std::move(particles), checkpoint.cell, settings, checkpoint.time, checkpoint.step,
+                        true);
   // On one rank index == id, so the stored ids are the local indices.
   NeighborList& neighbors = simulation.neighbors();
   const Particles& p = simulation.particles();
@@ -116,8 +118,8 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
     const auto j = static_cast<std::uint32_t>(contacts.particles[c][1]);
     const std::int64_t k = neighbors.find(p, i, j);
     if (k < 0) {
-      throw FileError(fmt::format("checkpoint '{}': contact ({}, {}) is not within reach of the restored positions",
-                                  path, i, j));
+      throw FileError(fmt::format(
+          "checkpoint '{}': contact ({}, {}) is not within reach of the restored positions", path, i, j));
     }
     auto& record = neighbors.records()[static_cast<std::size_t>(k)];
     record.normal = contacts.normal[c];
@@ -127,7 +129,8 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
     const double effective_radius = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
     record.normal_force =
         hertz_normal_force(contact_modulus(settings.material), effective_radius, contacts.overlap[c]);
-    record.tangential_stiffness = mindlin_tangential_stiffness(settings.material, effective_radius, contacts.overlap[c]);
+    record.tangential_stiffness =
+        mindlin_tangential_stiffness(settings.material, effective_radius, contacts.overlap[c]);
     auto& history = neighbors.history()[static_cast<std::size_t>(k)];
     history.tangential_spring = contacts.tangential_spring[c];
     history.sliding = contacts.sliding[c] != 0;

@@ -15,7 +15,9 @@ namespace {
 
 using h5::AxisMode;
 
-double compressive_strain(const Simulation& simulation) { return -simulation.cell().engineering_strain()[0]; }
+double compressive_strain(const Simulation& simulation) {
+  return -simulation.cell().engineering_strain()[0];
+}
 
 std::vector<double> history_row(const Simulation& simulation, const DemConfig& config) {
   const StateMeasures m = simulation.measure();
@@ -25,8 +27,8 @@ std::vector<double> history_row(const Simulation& simulation, const DemConfig& c
   const Mat3& s = m.stress;
   // Paper Fig. 3a plots (sigma_11 - sigma_33)/p with compression positive.
   const double ratio = (-s(0, 0) + s(2, 2)) / m.mean_stress;
-  const double inertial =
-      inertial_number(simulation.control().strain_rate[0], config.particles.d50, config.particles.density, m.mean_stress);
+  const double inertial = inertial_number(simulation.control().strain_rate[0], config.particles.d50,
+                                          config.particles.density, m.mean_stress);
   return {static_cast<double>(simulation.step_count()),
           simulation.time(),
           strain[0],
@@ -88,15 +90,18 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
   const mpi::Comm self(MPI_COMM_SELF);
   LoadSummary summary;
   const std::int64_t start_step = simulation.step_count();
-  double next_history = (std::floor(compressive_strain(simulation) / load.history_interval) + 1) * load.history_interval;
+  double next_history =
+      (std::floor(compressive_strain(simulation) / load.history_interval) + 1) * load.history_interval;
   std::size_t next_checkpoint = 0;
   while (next_checkpoint < load.checkpoint_strains.size() &&
          load.checkpoint_strains[next_checkpoint] <= compressive_strain(simulation)) {
     ++next_checkpoint;
   }
   const double rate = -simulation.control().target[0];
-  logger->info("load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s", rate,
-               load.inertial_number, compressive_strain(simulation), load.final_strain, simulation.settings().time_step);
+  logger->info(
+      "load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s", rate,
+      load.inertial_number, compressive_strain(simulation), load.final_strain,
+      simulation.settings().time_step);
   Progress progress(logger, "load", load.final_strain, 10.0);
   for (double strain = compressive_strain(simulation); strain < load.final_strain;
        strain = compressive_strain(simulation)) {
@@ -105,14 +110,17 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
     progress.update(strain);
     if (strain >= next_history || strain >= load.final_strain) {
       history.append(history_row(simulation, config));
-      while (next_history <= strain) next_history += load.history_interval;
+      while (next_history <= strain)
+        next_history += load.history_interval;
     }
-    if (next_checkpoint < load.checkpoint_strains.size() && strain >= load.checkpoint_strains[next_checkpoint]) {
+    if (next_checkpoint < load.checkpoint_strains.size() &&
+        strain >= load.checkpoint_strains[next_checkpoint]) {
       const std::string path = load_checkpoint_path(output_dir, next_checkpoint);
       h5::write_checkpoint(path, to_checkpoint(simulation, config.particles.d50, {}), provenance, self);
       history.write(output_dir, provenance);
-      logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e})", next_checkpoint, strain,
-                   path, mean_stress_compression_positive(simulation.stress()), simulation.servo_error());
+      logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e})", next_checkpoint,
+                   strain, path, mean_stress_compression_positive(simulation.stress()),
+                   simulation.servo_error());
       summary.checkpoints.push_back(path);
       ++next_checkpoint;
     }

@@ -20,11 +20,13 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   app.require_subcommand(1);
   auto* prepare = app.add_subcommand("prepare", "build a dense isotropic assembly consolidated to p0 "
                                                 "(writes <output_dir>/prepared.h5)");
-  auto* load = app.add_subcommand("load", "biaxial plane strain at constant mean stress from a prepared assembly "
-                                          "(writes <output_dir>/load_NNN.h5 and history.h5)");
+  auto* load =
+      app.add_subcommand("load", "biaxial plane strain at constant mean stress from a prepared assembly "
+                                 "(writes <output_dir>/load_NNN.h5 and history.h5)");
   std::string input;
   bool resume = false;
-  load->add_option("--input", input, "prepared assembly, or with --resume a load checkpoint (HDF5)")->required();
+  load->add_option("--input", input, "prepared assembly, or with --resume a load checkpoint (HDF5)")
+      ->required();
   load->add_flag("--resume", resume, "continue a loading run from one of its checkpoints");
   prepare->fallthrough();
   load->fallthrough();
@@ -36,8 +38,9 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const dem::DemConfig config = dem::read_dem_config(reader);
   if (cli::finish_config(reader, options, comm)) return 0;
   const Logger logger = make_logger("aniso-dem", comm, options.log_level);
-  require_input(comm.size() == 1, "aniso-dem runs on one rank in this version (domain decomposition is issue 3's "
-                                  "remaining work); run it without mpiexec -n > 1");
+  require_input(comm.size() == 1,
+                "aniso-dem runs on one rank in this version (domain decomposition is issue 3's "
+                "remaining work); run it without mpiexec -n > 1");
 
   std::optional<h5::Checkpoint> checkpoint;
   if (load->parsed()) {
@@ -54,7 +57,8 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
     const auto provenance = h5::make_provenance("aniso-dem prepare", reader.effective_toml(), command, comm);
     dem::PreparedAssembly prepared = dem::prepare_assembly(config, logger);
     const std::string path = config.output_dir + "/prepared.h5";
-    h5::write_checkpoint(path, dem::to_checkpoint(*prepared.simulation, config.particles.d50, prepared.rng_state),
+    h5::write_checkpoint(path,
+                         dem::to_checkpoint(*prepared.simulation, config.particles.d50, prepared.rng_state),
                          provenance, comm);
     logger->info("wrote {}: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f}, p = {:.4g} Pa", path,
                  prepared.consolidated.void_ratio, prepared.consolidated.coordination,
@@ -64,16 +68,20 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const auto provenance = h5::make_provenance("aniso-dem load", reader.effective_toml(), command, comm);
   dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input);
   if (!resume) dem::start_loading(simulation, config);
-  const dem::LoadSummary summary = dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume);
-  logger->info("load done: strain {:.4g} in {} steps, {:.1f} s wall ({:.3g} particle-steps/s); peak stress ratio "
-               "{:.4f} at strain {:.4g}",
-               summary.final_strain, summary.steps, summary.wall_seconds,
-               static_cast<double>(summary.steps) * static_cast<double>(simulation.particles().size()) /
-                   summary.wall_seconds,
-               summary.peak_stress_ratio, summary.peak_strain);
+  const dem::LoadSummary summary =
+      dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume);
+  logger->info(
+      "load done: strain {:.4g} in {} steps, {:.1f} s wall ({:.3g} particle-steps/s); peak stress ratio "
+      "{:.4f} at strain {:.4g}",
+      summary.final_strain, summary.steps, summary.wall_seconds,
+      static_cast<double>(summary.steps) * static_cast<double>(simulation.particles().size()) /
+          summary.wall_seconds,
+      summary.peak_stress_ratio, summary.peak_strain);
   return 0;
 }
 
 } // namespace
 
-int main(int argc, char** argv) { return aniso::cli::run(argc, argv, "aniso-dem", run_dem); }
+int main(int argc, char** argv) {
+  return aniso::cli::run(argc, argv, "aniso-dem", run_dem);
+}

@@ -14,22 +14,25 @@ Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const 
     if (record.overlap <= 0) continue;
     const Vec3 branch = record.distance * record.normal;
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) sums[static_cast<std::size_t>(3 * a + b)].add(branch[a] * record.force_on_i[b]);
+      for (int b = 0; b < 3; ++b)
+        sums[static_cast<std::size_t>(3 * a + b)].add(branch[a] * record.force_on_i[b]);
   }
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const Vec3& v = particles.velocity[k];
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) sums[static_cast<std::size_t>(3 * a + b)].add(-particles.mass[k] * v[a] * v[b]);
+      for (int b = 0; b < 3; ++b)
+        sums[static_cast<std::size_t>(3 * a + b)].add(-particles.mass[k] * v[a] * v[b]);
   }
   Mat3 stress;
   const double volume = cell.volume();
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) stress(a, b) = sums[static_cast<std::size_t>(3 * a + b)].value() / volume;
+    for (int b = 0; b < 3; ++b)
+      stress(a, b) = sums[static_cast<std::size_t>(3 * a + b)].value() / volume;
   return stress;
 }
 
-StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors,
-                            double solid_volume) {
+StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell,
+                            const NeighborList& neighbors, double solid_volume) {
   StateMeasures m;
   m.stress = average_stress(particles, cell, neighbors);
   m.mean_stress = mean_stress_compression_positive(m.stress);
@@ -81,17 +84,20 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
     }
   }
   std::int64_t n_kept = 0, n_kept_contacts = 0;
-  for (std::size_t k = 0; k < n; ++k) n_kept += rattler[k] ? 0 : 1;
+  for (std::size_t k = 0; k < n; ++k)
+    n_kept += rattler[k] ? 0 : 1;
   for (std::size_t c = 0; c < pairs.size(); ++c) {
     if (records[c].overlap > 0 && !rattler[pairs[c].i] && !rattler[pairs[c].j]) ++n_kept_contacts;
   }
   m.n_rattlers = static_cast<std::int64_t>(n) - n_kept;
-  m.coordination_no_rattlers = n_kept ? 2.0 * static_cast<double>(n_kept_contacts) / static_cast<double>(n_kept) : 0.0;
+  m.coordination_no_rattlers =
+      n_kept ? 2.0 * static_cast<double>(n_kept_contacts) / static_cast<double>(n_kept) : 0.0;
 
   ExactSum kinetic;
   for (std::size_t k = 0; k < n; ++k) {
     kinetic.add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
-    kinetic.add(0.5 * particles.angular_velocity[k].dot(particles.inertia[k].cwiseProduct(particles.angular_velocity[k])));
+    kinetic.add(0.5 * particles.angular_velocity[k].dot(
+                          particles.inertia[k].cwiseProduct(particles.angular_velocity[k])));
   }
   m.kinetic_energy = kinetic.value();
   return m;

@@ -15,20 +15,21 @@ namespace aniso::dem {
 Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors);
 
 struct StateMeasures {
-  Mat3 stress = Mat3::Zero();       ///< tension positive [Pa]
-  double mean_stress = 0;           ///< p, compression positive [Pa]
-  double deviatoric_stress = 0;     ///< q = sqrt(3 J2) [Pa]
-  double void_ratio = 0;            ///< (V - V_s) / V_s
+  Mat3 stress = Mat3::Zero();   ///< tension positive [Pa]
+  double mean_stress = 0;       ///< p, compression positive [Pa]
+  double deviatoric_stress = 0; ///< q = sqrt(3 J2) [Pa]
+  double void_ratio = 0;        ///< (V - V_s) / V_s
   std::int64_t n_contacts = 0;
-  double coordination = 0;          ///< 2 N_c / N
-  double coordination_no_rattlers = 0; ///< the same without rattlers (fewer than 2 contacts, removed iteratively)
+  double coordination = 0; ///< 2 N_c / N
+  double coordination_no_rattlers =
+      0; ///< the same without rattlers (fewer than 2 contacts, removed iteratively)
   std::int64_t n_rattlers = 0;
-  double kinetic_energy = 0;        ///< fluctuating translational plus rotational [J]
-  double elastic_energy = 0;        ///< Hertz normal plus tangential spring energy [J]
+  double kinetic_energy = 0; ///< fluctuating translational plus rotational [J]
+  double elastic_energy = 0; ///< Hertz normal plus tangential spring energy [J]
 };
 
-StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors,
-                            double solid_volume);
+StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell,
+                            const NeighborList& neighbors, double solid_volume);
 
 /// Inertial number I = strain rate * D50 * sqrt(density / p) (paper: quasi-static when small).
 double inertial_number(double strain_rate, double d50, double density, double mean_stress);

@@ -12,7 +12,8 @@ namespace {
 
 Vec3 separation(const Vec3& from, const Vec3& to, const Vec3& lengths) {
   Vec3 d = to - from;
-  for (int a = 0; a < 3; ++a) d[a] -= lengths[a] * std::nearbyint(d[a] / lengths[a]);
+  for (int a = 0; a < 3; ++a)
+    d[a] -= lengths[a] * std::nearbyint(d[a] / lengths[a]);
   return d;
 }
 
@@ -31,13 +32,15 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
   for (int a = 0; a < 3; ++a) {
     // The minimum image is unique only if no pair can interact through two images.
     if (lengths[a] < 2 * bin_reach) {
-      throw NumericalError(fmt::format("periodic cell length {:.4g} m on axis {} is below twice the interaction "
-                                       "range {:.4g} m: use more particles or a less elongated cell",
-                                       lengths[a], a + 1, bin_reach));
+      throw NumericalError(
+          fmt::format("periodic cell length {:.4g} m on axis {} is below twice the interaction "
+                      "range {:.4g} m: use more particles or a less elongated cell",
+                      lengths[a], a + 1, bin_reach));
     }
   }
   int n_bins[3];
-  for (int a = 0; a < 3; ++a) n_bins[a] = std::max(1, static_cast<int>(lengths[a] / bin_reach));
+  for (int a = 0; a < 3; ++a)
+    n_bins[a] = std::max(1, static_cast<int>(lengths[a] / bin_reach));
   const auto bin_of = [&](const Vec3& x) {
     int b[3];
     for (int a = 0; a < 3; ++a) {
@@ -54,11 +57,13 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
     particle_bin[i] = bin_of(particles.position[i]);
     ++bin_start[static_cast<std::size_t>(particle_bin[i]) + 1];
   }
-  for (int b = 0; b < total_bins; ++b) bin_start[b + 1] += bin_start[b];
+  for (int b = 0; b < total_bins; ++b)
+    bin_start[b + 1] += bin_start[b];
   std::vector<std::uint32_t> binned(n);
   {
     std::vector<int> fill(bin_start.begin(), bin_start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) binned[static_cast<std::size_t>(fill[particle_bin[i]]++)] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i)
+      binned[static_cast<std::size_t>(fill[particle_bin[i]]++)] = static_cast<std::uint32_t>(i);
   }
   // Neighbour bin offsets, de-duplicated for axes with fewer than three bins.
   std::vector<Pair> fresh;
@@ -86,7 +91,8 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
               const std::uint32_t j = binned[static_cast<std::size_t>(q)];
               if (particles.id[j] <= particles.id[i]) continue;
               const double reach = particles.radius[i] + particles.radius[j] + skin_;
-              if (separation(particles.position[i], particles.position[j], lengths).squaredNorm() < reach * reach) {
+              if (separation(particles.position[i], particles.position[j], lengths).squaredNorm() <
+                  reach * reach) {
                 fresh.push_back({i, j});
               }
             }
@@ -95,14 +101,17 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
       }
     }
   }
-  std::sort(fresh.begin(), fresh.end(), [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
+  std::sort(fresh.begin(), fresh.end(),
+            [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
   // Carry history over by merging the two sorted lists. Indices may have changed
   // (migration), but the old list was sorted by the same ids.
   std::vector<ContactHistory> fresh_history(fresh.size());
   std::size_t old_k = 0;
   for (std::size_t k = 0; k < fresh.size() && old_k < pairs_.size(); ++k) {
-    while (old_k < pairs_.size() && pair_less(particles, pairs_[old_k], fresh[k])) ++old_k;
-    if (old_k < pairs_.size() && !pair_less(particles, fresh[k], pairs_[old_k])) fresh_history[k] = history_[old_k];
+    while (old_k < pairs_.size() && pair_less(particles, pairs_[old_k], fresh[k]))
+      ++old_k;
+    if (old_k < pairs_.size() && !pair_less(particles, fresh[k], pairs_[old_k]))
+      fresh_history[k] = history_[old_k];
   }
   pairs_ = std::move(fresh);
   history_ = std::move(fresh_history);
@@ -118,7 +127,8 @@ bool NeighborList::needs_rebuild(const Particles& particles, const PeriodicCell&
   double max_shift_squared = 0;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3 affine = position_at_build_[i].cwiseProduct(scale);
-    max_shift_squared = std::max(max_shift_squared, separation(affine, particles.position[i], cell.lengths()).squaredNorm());
+    max_shift_squared =
+        std::max(max_shift_squared, separation(affine, particles.position[i], cell.lengths()).squaredNorm());
   }
   // A pair's separation changes by at most twice the largest non-affine shift
   // plus the cell strain times its length (at most the interaction range).
@@ -140,12 +150,14 @@ std::vector<Pair> brute_force_pairs(const Particles& particles, const PeriodicCe
     for (std::uint32_t j = 0; j < particles.size(); ++j) {
       if (particles.id[j] <= particles.id[i]) continue;
       const double reach = particles.radius[i] + particles.radius[j] + range;
-      if (separation(particles.position[i], particles.position[j], cell.lengths()).squaredNorm() < reach * reach) {
+      if (separation(particles.position[i], particles.position[j], cell.lengths()).squaredNorm() <
+          reach * reach) {
         result.push_back({i, j});
       }
     }
   }
-  std::sort(result.begin(), result.end(), [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
+  std::sort(result.begin(), result.end(),
+            [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
   return result;
 }
 

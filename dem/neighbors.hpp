@@ -20,12 +20,12 @@ struct Pair {
 
 /// What the last force evaluation found for one pair (overlap <= 0: not touching).
 struct ContactRecord {
-  Vec3 normal = Vec3::Zero();     ///< unit, from i to j
-  double distance = 0;            ///< centre distance [m]
-  double overlap = 0;             ///< [m]
-  Vec3 force_on_i = Vec3::Zero(); ///< [N]
-  double normal_force = 0;        ///< elastic normal force [N]
-  double tangential_stiffness = 0;///< [N/m], for the elastic energy
+  Vec3 normal = Vec3::Zero();      ///< unit, from i to j
+  double distance = 0;             ///< centre distance [m]
+  double overlap = 0;              ///< [m]
+  Vec3 force_on_i = Vec3::Zero();  ///< [N]
+  double normal_force = 0;         ///< elastic normal force [N]
+  double tangential_stiffness = 0; ///< [N/m], for the elastic energy
 };
 
 class NeighborList {

@@ -26,8 +26,8 @@ double particle_volume(double radius, double aspect_ratio) {
   return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
 }
 
-void Particles::add(std::uint64_t particle_id, double particle_radius, double particle_aspect_ratio, double density,
-                    const Vec3& particle_position) {
+void Particles::add(std::uint64_t particle_id, double particle_radius, double particle_aspect_ratio,
+                    double density, const Vec3& particle_position) {
   const double volume = particle_volume(particle_radius, particle_aspect_ratio);
   const double particle_mass = density * volume;
   const double moment = 0.4 * particle_mass * particle_radius * particle_radius;
@@ -46,7 +46,8 @@ void Particles::add(std::uint64_t particle_id, double particle_radius, double pa
 
 double Particles::solid_volume() const {
   double total = 0;
-  for (std::size_t i = 0; i < size(); ++i) total += particle_volume(radius[i], aspect_ratio[i]);
+  for (std::size_t i = 0; i < size(); ++i)
+    total += particle_volume(radius[i], aspect_ratio[i]);
   return total;
 }
 

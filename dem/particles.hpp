@@ -13,16 +13,16 @@ namespace aniso::dem {
 
 struct Particles {
   std::vector<std::uint64_t> id;
-  std::vector<double> radius;        ///< half the mid-plane diameter [m]
-  std::vector<double> aspect_ratio;  ///< 1 for spheres
-  std::vector<double> mass;          ///< [kg]
-  std::vector<Vec3> inertia;         ///< principal moments, body frame [kg m^2]
-  std::vector<Vec3> position;        ///< [m], wrapped into the cell
-  std::vector<Quat> orientation;     ///< body to world
-  std::vector<Vec3> velocity;        ///< fluctuating velocity [m/s]
-  std::vector<Vec3> angular_velocity;///< world frame [rad/s]
-  std::vector<Vec3> force;           ///< [N]
-  std::vector<Vec3> torque;          ///< [N m]
+  std::vector<double> radius;         ///< half the mid-plane diameter [m]
+  std::vector<double> aspect_ratio;   ///< 1 for spheres
+  std::vector<double> mass;           ///< [kg]
+  std::vector<Vec3> inertia;          ///< principal moments, body frame [kg m^2]
+  std::vector<Vec3> position;         ///< [m], wrapped into the cell
+  std::vector<Quat> orientation;      ///< body to world
+  std::vector<Vec3> velocity;         ///< fluctuating velocity [m/s]
+  std::vector<Vec3> angular_velocity; ///< world frame [rad/s]
+  std::vector<Vec3> force;            ///< [N]
+  std::vector<Vec3> torque;           ///< [N m]
 
   [[nodiscard]] std::size_t size() const { return id.size(); }
   void resize(std::size_t n);

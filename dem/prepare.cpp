@@ -18,7 +18,8 @@ double kinetic_energy(const Particles& particles) {
   double energy = 0;
   for (std::size_t k = 0; k < particles.size(); ++k) {
     energy += 0.5 * particles.mass[k] * particles.velocity[k].squaredNorm();
-    energy += 0.5 * particles.angular_velocity[k].dot(particles.inertia[k].cwiseProduct(particles.angular_velocity[k]));
+    energy += 0.5 * particles.angular_velocity[k].dot(
+                        particles.inertia[k].cwiseProduct(particles.angular_velocity[k]));
   }
   return energy;
 }
@@ -53,7 +54,8 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
     simulation.step();
     if (simulation.step_count() % interval != 0) continue;
     const double p = mean_stress_compression_positive(simulation.stress());
-    const double energy_ratio = kinetic_energy(simulation.particles()) / (std::max(p, 1.0) * simulation.cell().volume());
+    const double energy_ratio =
+        kinetic_energy(simulation.particles()) / (std::max(p, 1.0) * simulation.cell().volume());
     progress.update(std::clamp(p, 0.0, prepare.seize_stress));
     const bool above = p >= prepare.seize_stress;
     if (above && energy_ratio < 1e-4) break;
@@ -65,9 +67,10 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
       simulation.set_control(isotropic_strain_control(simulation, holding ? 0.0 : rate));
     }
     if (std::log(start_lengths[0] / simulation.cell().lengths()[0]) > strain_limit) {
-      throw ConvergenceError(fmt::format("{}: the assembly did not seize within a compaction strain of {:.2f} "
-                                         "(p = {:.3g} Pa, seize_stress {:.3g} Pa)",
-                                         label, strain_limit, p, prepare.seize_stress));
+      throw ConvergenceError(
+          fmt::format("{}: the assembly did not seize within a compaction strain of {:.2f} "
+                      "(p = {:.3g} Pa, seize_stress {:.3g} Pa)",
+                      label, strain_limit, p, prepare.seize_stress));
     }
   }
   simulation.set_control(isotropic_strain_control(simulation, 0.0));
@@ -85,7 +88,8 @@ void agitate(Simulation& simulation, double rms_speed, RandomStream& stream) {
     total_mass += particles.mass[k];
   }
   const Vec3 drift = momentum / total_mass; // no net motion of the assembly
-  for (auto& velocity : particles.velocity) velocity -= drift;
+  for (auto& velocity : particles.velocity)
+    velocity -= drift;
 }
 
 void consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger) {
@@ -96,7 +100,8 @@ void consolidate(Simulation& simulation, const DemConfig& config, double rate, c
   simulation.set_control(state);
   const double p0 = config.prepare.confining_pressure;
   const std::int64_t interval = simulation.settings().control_interval;
-  const std::int64_t max_steps = 200 * static_cast<std::int64_t>(0.05 / (rate * simulation.settings().time_step));
+  const std::int64_t max_steps =
+      200 * static_cast<std::int64_t>(0.05 / (rate * simulation.settings().time_step));
   Progress progress(logger, "consolidation to p0", 1.0, 10.0);
   std::int64_t settled_checks = 0;
   for (std::int64_t n = 1;; ++n) {
@@ -107,12 +112,14 @@ void consolidate(Simulation& simulation, const DemConfig& config, double rate, c
     const double energy_ratio = kinetic_energy(simulation.particles()) / (p * simulation.cell().volume());
     progress.update(std::clamp(1.0 - error, 0.0, 1.0));
     // Require the state to hold for 20 consecutive checks, so a passing oscillation does not count.
-    settled_checks = (error < config.prepare.consolidation_tolerance && energy_ratio < 1e-5) ? settled_checks + 1 : 0;
+    settled_checks =
+        (error < config.prepare.consolidation_tolerance && energy_ratio < 1e-5) ? settled_checks + 1 : 0;
     if (settled_checks >= 20) break;
     if (n > max_steps) {
-      throw ConvergenceError(fmt::format("consolidation to p0 = {:.3g} Pa did not settle in {} steps (p = {:.4g} Pa, "
-                                         "kinetic/pV = {:.2g})",
-                                         p0, max_steps, p, energy_ratio));
+      throw ConvergenceError(
+          fmt::format("consolidation to p0 = {:.3g} Pa did not settle in {} steps (p = {:.4g} Pa, "
+                      "kinetic/pV = {:.2g})",
+                      p0, max_steps, p, energy_ratio));
     }
   }
 }
@@ -124,7 +131,8 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
   const Grading grading{pc.diameter_min, pc.d50, pc.diameter_max};
   const std::vector<double> diameters = sample_diameters(grading, static_cast<std::size_t>(pc.count), sizes);
   double solid = 0;
-  for (double d : diameters) solid += particle_volume(0.5 * d, pc.aspect_ratio);
+  for (double d : diameters)
+    solid += particle_volume(0.5 * d, pc.aspect_ratio);
   const auto& aspect = config.prepare.cell_aspect;
   const double volume = solid / config.prepare.initial_solid_fraction;
   const double unit = std::cbrt(volume / (aspect[0] * aspect[1] * aspect[2]));
@@ -136,7 +144,8 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
     const double radius = 0.5 * diameters[k];
     bool placed = false;
     for (int attempt = 0; attempt < 100000 && !placed; ++attempt) {
-      const Vec3 x(placement.uniform(0, lengths[0]), placement.uniform(0, lengths[1]), placement.uniform(0, lengths[2]));
+      const Vec3 x(placement.uniform(0, lengths[0]), placement.uniform(0, lengths[1]),
+                   placement.uniform(0, lengths[2]));
       placed = true;
       for (std::size_t other = 0; other < particles.size() && placed; ++other) {
         const double reach = radius + particles.radius[other];
@@ -164,8 +173,10 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger)
   const auto& pc = config.particles;
   const auto& pr = config.prepare;
   Simulation simulation = sparse_assembly(config, sizes, placement);
-  const double rate = strain_rate_for_inertial_number(pr.inertial_number, pc.d50, pc.density, pr.confining_pressure);
-  logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction rate {:.3g} /s",
+  const double rate =
+      strain_rate_for_inertial_number(pr.inertial_number, pc.d50, pc.density, pr.confining_pressure);
+  logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction rate "
+               "{:.3g} /s",
                pc.count, 1e3 * simulation.cell().lengths()[0], 1e3 * simulation.cell().lengths()[1],
                1e3 * simulation.cell().lengths()[2], simulation.settings().time_step, rate);
   PreparedAssembly result;
@@ -188,7 +199,8 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger)
     }
   }
   logger->info("keeping cycle {} (e = {:.4f}, target {:.4f})", result.chosen_cycle,
-               result.cycle_void_ratios[static_cast<std::size_t>(result.chosen_cycle - 1)], pr.target_void_ratio);
+               result.cycle_void_ratios[static_cast<std::size_t>(result.chosen_cycle - 1)],
+               pr.target_void_ratio);
   Simulation chosen = std::move(*best);
   chosen.set_friction(config.material.friction);
   chosen.set_damping(config.prepare.damping);
@@ -196,9 +208,10 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger)
   consolidate(chosen, config, rate, logger);
   chosen.set_damping(config.integration.damping);
   result.consolidated = chosen.measure();
-  logger->info("consolidated to p = {:.4g} Pa: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f} ({} rattlers)",
-               result.consolidated.mean_stress, result.consolidated.void_ratio, result.consolidated.coordination,
-               result.consolidated.coordination_no_rattlers, result.consolidated.n_rattlers);
+  logger->info(
+      "consolidated to p = {:.4g} Pa: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f} ({} rattlers)",
+      result.consolidated.mean_stress, result.consolidated.void_ratio, result.consolidated.coordination,
+      result.consolidated.coordination_no_rattlers, result.consolidated.n_rattlers);
   result.simulation = std::move(chosen);
   result.rng_state = {sizes.state(), placement.state(), agitation.state()};
   return result;

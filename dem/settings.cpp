@@ -24,7 +24,8 @@ SimulationSettings settings_from_config(const DemConfig& config, double smallest
   return s;
 }
 
-double strain_rate_for_inertial_number(double inertial_number, double d50, double density, double mean_stress) {
+double strain_rate_for_inertial_number(double inertial_number, double d50, double density,
+                                       double mean_stress) {
   return inertial_number / (d50 * std::sqrt(density / mean_stress));
 }
 

@@ -10,6 +10,7 @@ namespace aniso::dem {
 SimulationSettings settings_from_config(const DemConfig& config, double smallest_diameter);
 
 /// Strain rate for an inertial number at a mean stress: rate = I / (D50 sqrt(rho / p)).
-double strain_rate_for_inertial_number(double inertial_number, double d50, double density, double mean_stress);
+double strain_rate_for_inertial_number(double inertial_number, double d50, double density,
+                                       double mean_stress);
 
 } // namespace aniso::dem

@@ -34,11 +34,11 @@ void Simulation::compute_forces() {
   for (std::size_t k = 0; k < records.size(); ++k) {
     const double smaller = std::min(particles_.radius[pairs[k].i], particles_.radius[pairs[k].j]);
     if (records[k].overlap > settings_.explosion_overlap * smaller || std::isnan(records[k].overlap)) {
-      throw NumericalError(fmt::format(
-          "step {}: overlap of particles {} and {} is {:.3g} of the smaller radius (limit {}): the run exploded; "
-          "lower the time step fraction or the loading rate",
-          step_, particles_.id[pairs[k].i], particles_.id[pairs[k].j], records[k].overlap / smaller,
-          settings_.explosion_overlap));
+      throw NumericalError(fmt::format("step {}: overlap of particles {} and {} is {:.3g} of the smaller "
+                                       "radius (limit {}): the run exploded; "
+                                       "lower the time step fraction or the loading rate",
+                                       step_, particles_.id[pairs[k].i], particles_.id[pairs[k].j],
+                                       records[k].overlap / smaller, settings_.explosion_overlap));
     }
   }
 }
@@ -49,7 +49,8 @@ void Simulation::update_control() {
     throw NumericalError(fmt::format("step {}: the stress is not finite: the run exploded", step_));
   }
   const double interval = static_cast<double>(settings_.control_interval) * settings_.time_step;
-  update_strain_rates(control_, stress_, axial_stiffness(neighbors_, cell_.volume()), interval, settings_.servo);
+  update_strain_rates(control_, stress_, axial_stiffness(neighbors_, cell_.volume()), interval,
+                      settings_.servo);
 }
 
 void Simulation::step() {
@@ -64,11 +65,17 @@ void Simulation::step() {
   if (step_ % settings_.control_interval == 0) update_control();
 }
 
-StateMeasures Simulation::measure() const { return measure_state(particles_, cell_, neighbors_, solid_volume_); }
+StateMeasures Simulation::measure() const {
+  return measure_state(particles_, cell_, neighbors_, solid_volume_);
+}
 
-void Simulation::restore_stress() { stress_ = average_stress(particles_, cell_, neighbors_); }
+void Simulation::restore_stress() {
+  stress_ = average_stress(particles_, cell_, neighbors_);
+}
 
-double Simulation::servo_error() const { return dem::servo_error(control_, stress_); }
+double Simulation::servo_error() const {
+  return dem::servo_error(control_, stress_);
+}
 
 void Simulation::set_control(const h5::CellState& control) {
   const Vec3 lengths = cell_.lengths(), reference = cell_.reference_lengths();

@@ -17,12 +17,12 @@ namespace aniso::dem {
 
 struct SimulationSettings {
   ContactMaterial material;
-  double density = 2650;            ///< [kg/m^3]
-  double time_step = 0;             ///< [s]; checked against the Rayleigh step
-  double skin = 0;                  ///< neighbour-list skin [m]
+  double density = 2650;              ///< [kg/m^3]
+  double time_step = 0;               ///< [s]; checked against the Rayleigh step
+  double skin = 0;                    ///< neighbour-list skin [m]
   std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
   ServoSettings servo;
-  double explosion_overlap = 0.05;  ///< stop when an overlap exceeds this fraction of the smaller radius
+  double explosion_overlap = 0.05; ///< stop when an overlap exceeds this fraction of the smaller radius
 };
 
 class Simulation {
@@ -30,8 +30,8 @@ public:
   /// Takes the particles (with forces as stored, or zero) and the cell state; builds the contact list.
   /// If `forces_valid` is false the initial forces are computed here; if true (a restart) the
   /// caller restores contact history and records, then calls restore_stress().
-  Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings, double time,
-             std::int64_t step, bool forces_valid);
+  Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings,
+             double time, std::int64_t step, bool forces_valid);
 
   /// One velocity-Verlet step: half kick, drift and cell strain, contact list refresh if
   /// needed, forces, half kick, and every control_interval steps a stress measurement and servo update.

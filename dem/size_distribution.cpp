@@ -34,7 +34,8 @@ std::vector<double> sample_diameters(const Grading& g, std::size_t count, Random
 double volume_median(std::vector<double> diameters) {
   std::sort(diameters.begin(), diameters.end());
   double total = 0;
-  for (double d : diameters) total += d * d * d;
+  for (double d : diameters)
+    total += d * d * d;
   double finer = 0;
   for (double d : diameters) {
     finer += d * d * d;

@@ -3,9 +3,11 @@
 #include "common/stage_stub.hpp"
 
 int main(int argc, char** argv) {
-  return aniso::cli::run(argc, argv, "aniso-probe", [](int argc_, char** argv_, const aniso::mpi::Comm& comm) {
-    return aniso::cli::run_pending_stage(
-        argc_, argv_, comm,
-        {"aniso-probe", "incremental stiffness from six oedometric probes of one checkpoint (section 5)", "probe", aniso::cli::InputKind::checkpoint, 6});
-  });
+  return aniso::cli::run(
+      argc, argv, "aniso-probe", [](int argc_, char** argv_, const aniso::mpi::Comm& comm) {
+        return aniso::cli::run_pending_stage(
+            argc_, argv_, comm,
+            {"aniso-probe", "incremental stiffness from six oedometric probes of one checkpoint (section 5)",
+             "probe", aniso::cli::InputKind::checkpoint, 6});
+      });
 }

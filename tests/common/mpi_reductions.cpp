@@ -19,13 +19,15 @@ using aniso::mpi::Comm;
 std::vector<double> global_terms() {
   aniso::RandomStream stream(2024, 5);
   std::vector<double> terms(1000);
-  for (auto& term : terms) term = std::ldexp(stream.uniform(-1.0, 1.0), static_cast<int>(stream.below(80)) - 40);
+  for (auto& term : terms)
+    term = std::ldexp(stream.uniform(-1.0, 1.0), static_cast<int>(stream.below(80)) - 40);
   return terms;
 }
 
 double serial_reference(const std::vector<double>& terms) {
   ExactSum sum;
-  for (double term : terms) sum.add(term);
+  for (double term : terms)
+    sum.add(term);
   return sum.value();
 }
 
@@ -36,9 +38,12 @@ TEST(MpiReductions, ExactSumIsIndependentOfRankCountAndDeal) {
   const auto n_ranks = static_cast<std::size_t>(comm.size());
   const auto rank = static_cast<std::size_t>(comm.rank());
   ExactSum round_robin, block, reversed_block;
-  for (std::size_t i = rank; i < n; i += n_ranks) round_robin.add(terms[i]);
-  for (std::size_t i = rank * n / n_ranks; i < (rank + 1) * n / n_ranks; ++i) block.add(terms[i]);
-  for (std::size_t i = (rank + 1) * n / n_ranks; i-- > rank * n / n_ranks;) reversed_block.add(terms[i]);
+  for (std::size_t i = rank; i < n; i += n_ranks)
+    round_robin.add(terms[i]);
+  for (std::size_t i = rank * n / n_ranks; i < (rank + 1) * n / n_ranks; ++i)
+    block.add(terms[i]);
+  for (std::size_t i = (rank + 1) * n / n_ranks; i-- > rank * n / n_ranks;)
+    reversed_block.add(terms[i]);
   const double reference = serial_reference(terms);
   EXPECT_EQ(comm.sum_exact(round_robin).value(), reference);
   EXPECT_EQ(comm.sum_exact(block).value(), reference);
@@ -74,7 +79,8 @@ TEST(MpiReductions, IntegerHelpers) {
   EXPECT_FALSE(comm.any(false));
   const auto gathered = comm.all_gather(std::int64_t{10 * comm.rank()});
   ASSERT_EQ(static_cast<std::int64_t>(gathered.size()), n);
-  for (int r = 0; r < comm.size(); ++r) EXPECT_EQ(gathered[static_cast<std::size_t>(r)], 10 * r);
+  for (int r = 0; r < comm.size(); ++r)
+    EXPECT_EQ(gathered[static_cast<std::size_t>(r)], 10 * r);
   std::vector<char> bytes;
   if (comm.is_root()) bytes = {'a', 'n', 'i'};
   comm.broadcast(bytes);

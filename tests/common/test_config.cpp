@@ -16,7 +16,9 @@ using aniso::config::Reader;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-toml::table parse(const char* text) { return toml::parse(text); }
+toml::table parse(const char* text) {
+  return toml::parse(text);
+}
 
 template <class Body> std::string error_of(Body body) {
   try {
@@ -45,7 +47,8 @@ TEST(Config, UnknownKeyNamed) {
   Reader reader(parse("[dem]\nfriction = 0.4\nfrictoin = 0.3\n"), "'a.toml'");
   reader.real("dem.friction", 0.5, "1", Range::non_negative(), "mu");
   const std::string message = error_of([&] { reader.reject_unknown(); });
-  EXPECT_THAT(message, AllOf(HasSubstr("unknown config key"), HasSubstr("'dem.frictoin'"), HasSubstr("a.toml")));
+  EXPECT_THAT(message,
+              AllOf(HasSubstr("unknown config key"), HasSubstr("'dem.frictoin'"), HasSubstr("a.toml")));
 }
 
 TEST(Config, ForeignSectionsTolerated) {
@@ -56,13 +59,16 @@ TEST(Config, ForeignSectionsTolerated) {
 
 TEST(Config, WrongTypeNamesKeyValueAndExpectation) {
   Reader reader(parse("[dem]\nfriction = \"high\"\n"), "'b.toml'");
-  const std::string message = error_of([&] { reader.real("dem.friction", 0.5, "1", Range::non_negative(), "mu"); });
-  EXPECT_THAT(message, AllOf(HasSubstr("'dem.friction'"), HasSubstr("high"), HasSubstr("expected a real number")));
+  const std::string message =
+      error_of([&] { reader.real("dem.friction", 0.5, "1", Range::non_negative(), "mu"); });
+  EXPECT_THAT(message,
+              AllOf(HasSubstr("'dem.friction'"), HasSubstr("high"), HasSubstr("expected a real number")));
   Reader integer_reader(parse("n = 1.5\n"), "x");
   EXPECT_THAT(error_of([&] { integer_reader.integer("n", 1, Range::positive(), "count"); }),
               AllOf(HasSubstr("'n'"), HasSubstr("1.5"), HasSubstr("expected an integer")));
   Reader bool_reader(parse("flag = 1\n"), "x");
-  EXPECT_THAT(error_of([&] { bool_reader.boolean("flag", false, "f"); }), HasSubstr("expected true or false"));
+  EXPECT_THAT(error_of([&] { bool_reader.boolean("flag", false, "f"); }),
+              HasSubstr("expected true or false"));
 }
 
 TEST(Config, OutOfRangeNamesKeyValueAndRange) {
@@ -77,7 +83,9 @@ TEST(Config, OutOfRangeNamesKeyValueAndRange) {
 
 TEST(Config, ChoiceRejectsUnlistedWord) {
   Reader reader(parse("mode = \"mrt\"\n"), "x");
-  EXPECT_THAT(error_of([&] { reader.choice("mode", "trt", {"trt", "bgk"}, "collision"); }),
+  EXPECT_THAT(error_of([&] {
+                reader.choice("mode", "trt", {"trt", "bgk"}, "collision");
+              }),
               AllOf(HasSubstr("\"mrt\""), HasSubstr("trt | bgk")));
 }
 
@@ -92,8 +100,10 @@ TEST(Config, OverridesParseTomlValuesAndCreateTables) {
   EXPECT_EQ(reader.integer("dem.particles.count", 1, Range::positive(), "n"), 64);
   EXPECT_EQ(reader.text("dem.output_dir", ".", "dir"), "runs/a");
   EXPECT_EQ(reader.reals("dem.strains", {}, "1", Range::positive(), 2, "s").size(), 2u);
-  EXPECT_THAT(error_of([&] { aniso::config::apply_override(table, "no-equals-sign"); }), HasSubstr("key=value"));
-  EXPECT_THAT(error_of([&] { aniso::config::apply_override(table, "dem.friction.x=1"); }), HasSubstr("not a table"));
+  EXPECT_THAT(error_of([&] { aniso::config::apply_override(table, "no-equals-sign"); }),
+              HasSubstr("key=value"));
+  EXPECT_THAT(error_of([&] { aniso::config::apply_override(table, "dem.friction.x=1"); }),
+              HasSubstr("not a table"));
 }
 
 TEST(Config, EffectiveTomlIsValidTomlWithDefaults) {

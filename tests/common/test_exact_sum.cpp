@@ -14,7 +14,8 @@ namespace {
 
 double exact_sum(const std::vector<double>& terms) {
   aniso::ExactSum sum;
-  for (double term : terms) sum.add(term);
+  for (double term : terms)
+    sum.add(term);
   return sum.value();
 }
 
@@ -57,7 +58,8 @@ TEST(ExactSum, OrderIndependentBitForBit) {
   const double reference = exact_sum(terms);
   aniso::RandomStream shuffler(7, 0);
   for (int trial = 0; trial < 20; ++trial) {
-    for (std::size_t i = terms.size() - 1; i > 0; --i) std::swap(terms[i], terms[shuffler.below(i + 1)]);
+    for (std::size_t i = terms.size() - 1; i > 0; --i)
+      std::swap(terms[i], terms[shuffler.below(i + 1)]);
     EXPECT_EQ(exact_sum(terms), reference) << "trial " << trial;
   }
 }
@@ -67,9 +69,11 @@ TEST(ExactSum, CorrectlyRoundedAgainstLongDoubleOnModestRanges) {
   // double sum in sorted order is exact, so it is the reference.
   aniso::RandomStream stream(3, 1);
   std::vector<double> terms;
-  for (int i = 0; i < 200; ++i) terms.push_back(std::ldexp(stream.uniform(-1.0, 1.0), static_cast<int>(stream.below(8))));
+  for (int i = 0; i < 200; ++i)
+    terms.push_back(std::ldexp(stream.uniform(-1.0, 1.0), static_cast<int>(stream.below(8))));
   long double reference = 0;
-  for (double term : terms) reference += term;
+  for (double term : terms)
+    reference += term;
   EXPECT_EQ(exact_sum(terms), static_cast<double>(reference));
 }
 
@@ -77,8 +81,10 @@ TEST(ExactSum, MergingPartialSumsEqualsOneSum) {
   const std::vector<double> terms = wide_range_terms(11, 3000);
   for (std::size_t split : {std::size_t{1}, std::size_t{1000}, std::size_t{2999}}) {
     aniso::ExactSum left, right;
-    for (std::size_t i = 0; i < split; ++i) left.add(terms[i]);
-    for (std::size_t i = split; i < terms.size(); ++i) right.add(terms[i]);
+    for (std::size_t i = 0; i < split; ++i)
+      left.add(terms[i]);
+    for (std::size_t i = split; i < terms.size(); ++i)
+      right.add(terms[i]);
     right.add(left);
     EXPECT_EQ(right.value(), exact_sum(terms));
   }

@@ -42,9 +42,11 @@ TEST(Rng, SameSeedSameNumbersDifferentStreamsDiffer) {
 
 TEST(Rng, StateRoundTripContinuesIdentically) {
   RandomStream stream(9, 3);
-  for (int i = 0; i < 17; ++i) stream.normal();
+  for (int i = 0; i < 17; ++i)
+    stream.normal();
   auto restored = RandomStream::from_state(stream.state());
-  for (int i = 0; i < 100; ++i) EXPECT_EQ(stream.normal(), restored.normal());
+  for (int i = 0; i < 100; ++i)
+    EXPECT_EQ(stream.normal(), restored.normal());
 }
 
 TEST(Rng, UniformMomentsAndRange) {
@@ -59,16 +61,18 @@ TEST(Rng, UniformMomentsAndRange) {
     sum_sq += u * u;
   }
   const double mean = sum / n, variance = sum_sq / n - mean * mean;
-  EXPECT_NEAR(mean, 3.5, 0.01);        // standard error 0.0019
-  EXPECT_NEAR(variance, 0.75, 0.01);   // 9/12
+  EXPECT_NEAR(mean, 3.5, 0.01);      // standard error 0.0019
+  EXPECT_NEAR(variance, 0.75, 0.01); // 9/12
 }
 
 TEST(Rng, BelowIsUniformOverSmallRange) {
   RandomStream stream(2, 0);
   std::vector<int> counts(7, 0);
   const int n = 70000;
-  for (int i = 0; i < n; ++i) ++counts[stream.below(7)];
-  for (int count : counts) EXPECT_NEAR(count, n / 7, 400); // ~4 standard deviations
+  for (int i = 0; i < n; ++i)
+    ++counts[stream.below(7)];
+  for (int count : counts)
+    EXPECT_NEAR(count, n / 7, 400); // ~4 standard deviations
 }
 
 TEST(Rng, NormalMoments) {

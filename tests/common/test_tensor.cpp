@@ -51,7 +51,8 @@ TEST(Tensor, AxisAnisotropyAndVoigt) {
   Mat3 sym;
   sym << 1, 6, 5, 6, 2, 4, 5, 4, 3;
   const auto voigt = aniso::to_voigt(sym);
-  for (int i = 0; i < 6; ++i) EXPECT_EQ(voigt[i], i + 1.0);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(voigt[i], i + 1.0);
   EXPECT_EQ(aniso::from_voigt(voigt), sym);
 }
 
