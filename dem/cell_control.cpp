@@ -41,7 +41,14 @@ Vec3 update_strain_rates(h5::CellState& state, const Mat3& stress, const Vec3& s
       // Stretching by e adds M e of tension; too much compression (stress below target) expands.
       strain_increment = settings.gain * (state.target[a] - stress(a, a)) / std::max(stiffness[a], 1e-12);
     }
-    double rate = strain_increment / interval;
+    // Proportional part plus an integral part (servo_state) that learns the steady
+    // rate the axis needs, so a constant rate does not require a standing error.
+    const double proportional = strain_increment / interval;
+    state.servo_state[a] += proportional / settings.integral_intervals;
+    if (settings.max_rate > 0) {
+      state.servo_state[a] = std::clamp(state.servo_state[a], -settings.max_rate, settings.max_rate);
+    }
+    double rate = proportional + state.servo_state[a];
     if (settings.max_rate > 0) rate = std::clamp(rate, -settings.max_rate, settings.max_rate);
     rates[a] = rate;
   }

@@ -3,7 +3,8 @@
 // servo. The servo is stiffness-scaled: each update asks for the strain that
 // would remove a fraction `gain` of the stress error if the assembly answered
 // elastically with its current contact stiffness, spread over the update
-// interval and capped at `max_rate`. Stiffness scaling keeps one gain usable
+// interval and capped at `max_rate`; an integral term learns the steady rate
+// so that steady loading needs no standing error. Stiffness scaling keeps one gain usable
 // from a loose packing to 100 kPa. Biaxial plane strain at constant mean
 // stress: axis 1 strain rate, axis 2 rate 0, axis 3 servoed to hold p.
 
@@ -14,8 +15,9 @@
 namespace aniso::dem {
 
 struct ServoSettings {
-  double gain = 0.2;   ///< fraction of the stress error removed per update (0, 1]
-  double max_rate = 0; ///< cap on |strain rate| of servoed axes [1/s]
+  double gain = 0.2;              ///< fraction of the stress error removed per update (0, 1]
+  double max_rate = 0;            ///< cap on |strain rate| of servoed axes [1/s]
+  double integral_intervals = 20; ///< integral time of the servo, in updates
 };
 
 /// Constrained modulus of the contact network along each axis,

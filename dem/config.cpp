@@ -73,8 +73,6 @@ DemConfig read_dem_config(config::Reader& reader) {
   pr.initial_solid_fraction =
       reader.real("dem.prepare.initial_solid_fraction", pr.initial_solid_fraction, units::none,
                   Range::open(0.0, 0.4), "solid fraction of the sparse start");
-  require_input(pr.seize_stress < pr.confining_pressure,
-                "config: dem.prepare.seize_stress must be below confining_pressure");
   pr.cycles = reader.integer("dem.prepare.cycles", pr.cycles, Range::closed(1, 1000),
                              "compaction cycles (paper: 14)");
   pr.target_void_ratio = reader.real("dem.prepare.target_void_ratio", pr.target_void_ratio, units::none,
@@ -87,6 +85,8 @@ DemConfig read_dem_config(config::Reader& reader) {
                            "contact damping ratio while compacting");
   pr.seize_stress = reader.real("dem.prepare.seize_stress", pr.seize_stress, units::pascal, Range::positive(),
                                 "mean stress at which a compacting assembly counts as seized");
+  require_input(pr.seize_stress < pr.confining_pressure,
+                "config: dem.prepare.seize_stress must be below dem.prepare.confining_pressure");
   pr.agitation_speed = reader.real("dem.prepare.agitation_speed", pr.agitation_speed, units::none,
                                    Range::non_negative(), "rms random speed between cycles, in sqrt(p0/rho)");
   pr.consolidation_tolerance =

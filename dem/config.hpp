@@ -30,7 +30,7 @@ struct MaterialConfig {
 struct IntegrationConfig {
   double time_step_fraction = 0.2; ///< of the Rayleigh critical step of the smallest particle
   double time_step = 0.0;          ///< explicit step [s]; 0 = from the fraction; refused above critical
-  double damping = 0.0;            ///< viscous contact damping ratio during loading (see docs/methods/dem.md)
+  double damping = 0.05;           ///< viscous contact damping ratio during loading (see docs/methods/dem.md)
   double skin = 0.1;               ///< neighbour-list skin in units of D50
   std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
   double servo_gain = 0.2;            ///< fraction of the stress error removed per servo update

@@ -72,7 +72,7 @@ ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProp
   ContactForce result;
   const double overlap = kinematics.overlap;
   if (!(overlap > 0)) {
-    history.tangential_spring.setZero();
+    history.tangential_force.setZero();
     history.sliding = false;
     return result;
   }
@@ -92,32 +92,33 @@ ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProp
   const double v_n = v_rel.dot(n);
   const Vec3 v_t = v_rel - v_n * n;
 
-  // Turn the spring into the current tangent plane, keeping its length,
-  // then add this step's tangential displacement.
-  Vec3& xi = history.tangential_spring;
-  const double old_norm2 = xi.squaredNorm();
+  // Incremental Mindlin: the elastic tangential force is the state. Turn it into
+  // the current tangent plane keeping its length, then add k_t times this step's
+  // tangential displacement. (The total form k_t(delta) * xi pumps energy into an
+  // undamped packing whenever the overlap oscillates under a fixed xi.)
+  Vec3& f_spring = history.tangential_force;
+  const double old_norm2 = f_spring.squaredNorm();
   if (old_norm2 > 0) {
-    xi -= xi.dot(n) * n;
-    const double new_norm2 = xi.squaredNorm();
+    f_spring -= f_spring.dot(n) * n;
+    const double new_norm2 = f_spring.squaredNorm();
     if (new_norm2 > 0) {
-      xi *= std::sqrt(old_norm2 / new_norm2);
+      f_spring *= std::sqrt(old_norm2 / new_norm2);
     } else {
-      xi.setZero(); // the old spring was along the new normal: no tangential direction survives
+      f_spring.setZero();
     }
   }
-  xi += v_t * kinematics.time_step;
+  f_spring += (k_t * kinematics.time_step) * v_t;
 
-  // Coulomb limit on the elastic tangential force k_t |xi| <= mu F_n; when it
-  // is exceeded the spring is shortened to the limit (sliding contact).
+  // Coulomb limit |F_t| <= mu F_n: beyond it the force is scaled back (sliding).
   const double f_max = material.friction * f_n;
-  const double xi_norm2 = xi.squaredNorm();
-  if (k_t * k_t * xi_norm2 > f_max * f_max) {
-    xi *= (f_max / k_t) / std::sqrt(xi_norm2);
+  const double f_norm2 = f_spring.squaredNorm();
+  if (f_norm2 > f_max * f_max) {
+    f_spring *= f_max / std::sqrt(f_norm2);
     history.sliding = true;
   } else {
     history.sliding = false;
   }
-  Vec3 f_t = k_t * xi; // drags i along with j's relative tangential motion
+  Vec3 f_t = f_spring; // drags i along with j's relative tangential motion
 
   // Viscous damping, a fraction beta of critical for the linearised springs.
   // On i it is +c v_rel (componentwise): it opposes the approach of j and drags

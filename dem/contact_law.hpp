@@ -2,7 +2,7 @@
 // Hertz normal force and Mindlin tangential stiffness with a Coulomb limit
 // (paper section 2: "Hertz-Mindlin interactions ... no contact bonding or
 // rotational resistance"), plus optional viscous contact damping. Stateless
-// functions: the only memory, the tangential spring, is passed in and updated.
+// functions: the only memory, the elastic tangential force, is passed in and updated.
 // Formulas and references: docs/methods/dem-contact-law.md.
 
 #include "common/tensor.hpp"
@@ -31,9 +31,9 @@ struct ContactKinematics {
   double time_step = 0;   ///< [s]
 };
 
-/// The history of one contact: the tangential spring and whether it slides.
+/// The history of one contact: the elastic tangential force and whether it slides.
 struct ContactHistory {
-  Vec3 tangential_spring = Vec3::Zero(); ///< accumulated tangential displacement of j relative to i [m]
+  Vec3 tangential_force = Vec3::Zero(); ///< elastic tangential force on i, built incrementally [N]
   bool sliding = false;
 };
 
@@ -58,7 +58,7 @@ double rayleigh_time_step(double radius, double density, const ContactMaterial& 
 double hertz_contact_duration(double contact_modulus, double effective_radius, double effective_mass,
                               double approach_speed);
 
-/// Force of one time step; rotates the spring into the current tangent plane,
+/// Force of one time step; rotates the tangential force into the current tangent plane,
 /// adds this step's tangential motion and caps it at the Coulomb limit.
 ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProperties& pair,
                                  const ContactKinematics& kinematics, ContactHistory& history);

@@ -52,7 +52,7 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
         simulation.cell().wrap(p.position[i] + (p.radius[i] - 0.5 * records[k].overlap) * records[k].normal));
     c.contacts.overlap.push_back(records[k].overlap);
     c.contacts.force.push_back(records[k].force_on_i);
-    c.contacts.tangential_spring.push_back(history[k].tangential_spring);
+    c.contacts.tangential_force.push_back(history[k].tangential_force);
     c.contacts.sliding.push_back(history[k].sliding ? 1 : 0);
   }
   c.parameters = {
@@ -66,6 +66,7 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
       {"control_interval", static_cast<double>(s.control_interval), units::none},
       {"servo_gain", s.servo.gain, units::none},
       {"servo_max_rate", s.servo.max_rate, units::per_second},
+      {"servo_integral_intervals", s.servo.integral_intervals, units::none},
       {"explosion_overlap", s.explosion_overlap, units::none},
   };
   c.rng_state = rng_state;
@@ -85,6 +86,7 @@ SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, co
   s.control_interval = static_cast<std::int64_t>(get("control_interval"));
   s.servo.gain = get("servo_gain");
   s.servo.max_rate = get("servo_max_rate");
+  s.servo.integral_intervals = get("servo_integral_intervals");
   s.explosion_overlap = get("explosion_overlap");
   return s;
 }
@@ -132,7 +134,7 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
     record.tangential_stiffness =
         mindlin_tangential_stiffness(settings.material, effective_radius, contacts.overlap[c]);
     auto& history = neighbors.history()[static_cast<std::size_t>(k)];
-    history.tangential_spring = contacts.tangential_spring[c];
+    history.tangential_force = contacts.tangential_force[c];
     history.sliding = contacts.sliding[c] != 0;
   }
   simulation.restore_stress();

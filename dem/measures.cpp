@@ -51,7 +51,8 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
     ++degree[pairs[k].i];
     ++degree[pairs[k].j];
     elastic.add(0.4 * records[k].normal_force * records[k].overlap); // integral of the Hertz force
-    elastic.add(0.5 * records[k].tangential_stiffness * history[k].tangential_spring.squaredNorm());
+    // Incremental Mindlin: the spring holds the elastic tangential force F_t; its energy is F_t^2 / (2 k_t).
+    elastic.add(0.5 * history[k].tangential_force.squaredNorm() / records[k].tangential_stiffness);
   }
   m.elastic_energy = elastic.value();
   m.coordination = n ? 2.0 * static_cast<double>(m.n_contacts) / static_cast<double>(n) : 0.0;

@@ -27,9 +27,9 @@ struct CellState {
   Vec3 reference_lengths = Vec3::Ones(); ///< lengths at zero strain [m]
   Vec3 strain_rate = Vec3::Zero();       ///< current rate dL/dt / L per axis [1/s]
   std::array<AxisMode, 3> mode{AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::strain_rate};
-  Vec3 target = Vec3::Zero();  ///< per axis: strain rate [1/s] (strain_rate mode) or stress [Pa] (stress mode)
-  bool hold_mean_stress = false; ///< stress-mode axes together hold p = mean_stress_target
-  double mean_stress_target = 0; ///< [Pa], compression positive
+  Vec3 target = Vec3::Zero(); ///< per axis: strain rate [1/s] (strain_rate mode) or stress [Pa] (stress mode)
+  bool hold_mean_stress = false;   ///< stress-mode axes together hold p = mean_stress_target
+  double mean_stress_target = 0;   ///< [Pa], compression positive
   Vec3 servo_state = Vec3::Zero(); ///< controller memory (integral terms) per axis
 };
 
@@ -42,17 +42,17 @@ struct Parameter {
 
 /// Particles held by this rank (structure of arrays; all vectors have the same length).
 struct ParticleRows {
-  std::vector<std::uint64_t> id;         ///< 0 .. N-1 over all ranks, each exactly once
-  std::vector<double> diameter;          ///< mid-plane diameter [m]
-  std::vector<double> aspect_ratio;      ///< axial height / mid-plane diameter; 1 = sphere
-  std::vector<double> mass;              ///< [kg]
-  std::vector<Vec3> inertia;             ///< principal moments in the body frame, axis of revolution = z [kg m^2]
-  std::vector<Vec3> position;            ///< [m], inside the cell
-  std::vector<Quat> orientation;         ///< body to world rotation, unit quaternion (w, x, y, z on disk)
-  std::vector<Vec3> velocity;            ///< [m/s]
-  std::vector<Vec3> angular_velocity;    ///< world frame [rad/s]
-  std::vector<Vec3> force;               ///< total force at the stored step [N]
-  std::vector<Vec3> torque;              ///< total torque at the stored step, world frame [N m]
+  std::vector<std::uint64_t> id;    ///< 0 .. N-1 over all ranks, each exactly once
+  std::vector<double> diameter;     ///< mid-plane diameter [m]
+  std::vector<double> aspect_ratio; ///< axial height / mid-plane diameter; 1 = sphere
+  std::vector<double> mass;         ///< [kg]
+  std::vector<Vec3> inertia;        ///< principal moments in the body frame, axis of revolution = z [kg m^2]
+  std::vector<Vec3> position;       ///< [m], inside the cell
+  std::vector<Quat> orientation;    ///< body to world rotation, unit quaternion (w, x, y, z on disk)
+  std::vector<Vec3> velocity;       ///< [m/s]
+  std::vector<Vec3> angular_velocity; ///< world frame [rad/s]
+  std::vector<Vec3> force;            ///< total force at the stored step [N]
+  std::vector<Vec3> torque;           ///< total torque at the stored step, world frame [N m]
 
   [[nodiscard]] std::size_t size() const { return id.size(); }
   void resize(std::size_t n);
@@ -61,13 +61,13 @@ struct ParticleRows {
 /// Contacts held by this rank, id_i < id_j; history included.
 struct ContactRows {
   std::vector<std::array<std::uint64_t, 2>> particles; ///< (id_i, id_j), id_i < id_j
-  std::vector<Vec3i> image_shift;        ///< periodic image of j relative to i, in cell lengths
-  std::vector<Vec3> normal;              ///< unit normal pointing from i to j
-  std::vector<Vec3> point;               ///< contact point [m], wrapped into the cell
-  std::vector<double> overlap;           ///< normal overlap [m], > 0
-  std::vector<Vec3> force;               ///< force on i from j [N]
-  std::vector<Vec3> tangential_spring;   ///< accumulated tangential displacement [m]
-  std::vector<std::uint8_t> sliding;     ///< 1 if at the Coulomb limit at the stored step
+  std::vector<Vec3i> image_shift;                      ///< periodic image of j relative to i, in cell lengths
+  std::vector<Vec3> normal;                            ///< unit normal pointing from i to j
+  std::vector<Vec3> point;                             ///< contact point [m], wrapped into the cell
+  std::vector<double> overlap;                         ///< normal overlap [m], > 0
+  std::vector<Vec3> force;                             ///< force on i from j [N]
+  std::vector<Vec3> tangential_force; ///< elastic tangential force on i (Mindlin history) [N]
+  std::vector<std::uint8_t> sliding;  ///< 1 if at the Coulomb limit at the stored step
 
   [[nodiscard]] std::size_t size() const { return particles.size(); }
   void resize(std::size_t n);
@@ -75,13 +75,13 @@ struct ContactRows {
 
 /// The complete state of a DEM run at one step.
 struct Checkpoint {
-  double time = 0;         ///< simulated time [s]
-  std::int64_t step = 0;   ///< time steps taken
-  double time_step = 0;    ///< [s]
+  double time = 0;       ///< simulated time [s]
+  std::int64_t step = 0; ///< time steps taken
+  double time_step = 0;  ///< [s]
   CellState cell;
-  ParticleRows particles;  ///< this rank's rows (all rows after read)
-  ContactRows contacts;    ///< this rank's rows (all rows after read)
-  std::vector<Parameter> parameters;                  ///< material and run parameters
+  ParticleRows particles;                              ///< this rank's rows (all rows after read)
+  ContactRows contacts;                                ///< this rank's rows (all rows after read)
+  std::vector<Parameter> parameters;                   ///< material and run parameters
   std::vector<std::array<std::uint64_t, 4>> rng_state; ///< every random stream's state
 };
 
