@@ -32,8 +32,15 @@ def main(folder):
           f"{100 * np.median(servo):.3f}%, {100 * servo.max():.3f}% |")
     print(f"| inertial number (median) | {np.median(h['inertial_number']):.3g} |\n")
     print("![stress-strain](figures/stress_strain.png)\n")
-    print("Reading: the stress ratio rises steeply at small strain to a peak and then softens, while the "
-          "volume first contracts slightly and then dilates, as in the paper's Fig. 3 for dense assemblies. "
+    volumetric = h["volumetric_strain"]
+    softening = ratio[-1] < 0.95 * ratio[peak]
+    contraction = volumetric.min() < 0 and int(np.argmin(volumetric)) < len(volumetric) - 1
+    dilates = volumetric[-1] > volumetric.min()
+    print("Reading: the stress ratio " + ("peaks and then softens" if softening else "has not passed its peak")
+          + f" by {100 * strain[-1]:.3g}% strain; the volume "
+          + ("contracts first and then dilates" if contraction and dilates else
+             "only dilates" if not contraction else "only contracts")
+          + ". The paper's dense assemblies (its Fig. 3) peak and soften and dilate strongly beyond about 5% strain. "
           "The numbers behind the figure are in figures/stress_strain.csv.")
 
 

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# The README's demo command: installs missing Debian packages (make among them),
+# then builds and runs the default demo campaign (`make demo`).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh demo
+exec make demo "$@"
