@@ -1,15 +1,16 @@
 #include "common/exact_sum.hpp"
 
 #include <cmath>
+#include <cstring>
 
 namespace aniso {
 namespace {
 
 __extension__ using uint128 = unsigned __int128; // GCC/Clang extension, exact 128-bit products
 
-// Bit position of limb 0's least significant bit is 2^-offset. frexp of the
-// smallest subnormal gives an LSB exponent of -1126, so 1152 keeps every
-// position non-negative; 72 limbs of 32 bits reach 2^1152, above DBL_MAX.
+// Bit position of limb 0's least significant bit is 2^-offset. The smallest
+// mantissa bit of any double is 2^-1074, so 1152 keeps every position
+// non-negative; 72 limbs of 32 bits reach 2^1152, above DBL_MAX.
 constexpr int offset = 1152;
 constexpr std::int64_t normalize_every = std::int64_t{1} << 30;
 constexpr std::uint64_t digit_mask = 0xffffffffULL;
@@ -17,24 +18,30 @@ constexpr std::uint64_t digit_mask = 0xffffffffULL;
 } // namespace
 
 void ExactSum::add(double term) {
-  if (!std::isfinite(term)) {
+  // Read sign, exponent and mantissa straight from the IEEE-754 bits: much
+  // cheaper than frexp/ldexp, and exact for normals and subnormals alike.
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &term, sizeof bits);
+  const auto biased_exponent = static_cast<int>((bits >> 52) & 0x7ff);
+  if (biased_exponent == 0x7ff) {
     nonfinite_ = true;
     return;
   }
-  if (term == 0.0) return;
-  int exponent = 0;
-  const double fraction = std::frexp(std::fabs(term), &exponent);             // term = fraction * 2^exponent
-  const auto mantissa = static_cast<std::uint64_t>(std::ldexp(fraction, 53)); // exact: 53 bits
-  const int position = exponent - 53 + offset;
+  std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
+  if (biased_exponent != 0) mantissa |= std::uint64_t{1} << 52; // implicit leading bit of normals
+  if (mantissa == 0) return;
+  // value = mantissa * 2^(e - 1075) for normals, mantissa * 2^-1074 for subnormals.
+  const int lsb_exponent = (biased_exponent == 0 ? 1 : biased_exponent) - 1075;
+  const int position = lsb_exponent + offset;
   const int limb = position / digit_bits;
   const int shift = position % digit_bits;
   const uint128 shifted = static_cast<uint128>(mantissa) << shift;
-  const std::int64_t sign = term < 0 ? -1 : 1;
-  for (int d = 0; d < 3; ++d) {
-    const auto digit =
-        static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted >> (32 * d)) & digit_mask);
-    limbs_[limb + d] += sign * digit;
-  }
+  const std::int64_t sign = (bits >> 63) != 0 ? -1 : 1;
+  limbs_[limb] += sign * static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted) & digit_mask);
+  limbs_[limb + 1] +=
+      sign * static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted >> 32) & digit_mask);
+  limbs_[limb + 2] +=
+      sign * static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted >> 64) & digit_mask);
   if (++pending_ >= normalize_every) normalize();
 }
 
