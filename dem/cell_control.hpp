@@ -9,6 +9,7 @@
 // stress: axis 1 strain rate, axis 2 rate 0, axis 3 servoed to hold p.
 
 #include "common/h5/checkpoint.hpp"
+#include "common/mpi.hpp"
 #include "common/tensor.hpp"
 #include "dem/neighbors.hpp"
 
@@ -21,8 +22,9 @@ struct ServoSettings {
 };
 
 /// Constrained modulus of the contact network along each axis,
-/// M_a = (1/V) sum_c k_n n_a^2 d_a^2 [Pa], from the last force pass.
-Vec3 axial_stiffness(const NeighborList& neighbors, double volume);
+/// M_a = (1/V) sum_c k_n n_a^2 d_a^2 [Pa], from the last force pass; exact, collective.
+Vec3 axial_stiffness(const NeighborList& neighbors, const Particles& particles, double volume,
+                     const mpi::Comm& comm);
 
 /// New strain rates for every axis from the controller state, the measured stress
 /// (tension positive) and the axial stiffness; `interval` is the time until the next update.

@@ -10,7 +10,7 @@
 namespace aniso::dem {
 
 void kick(Particles& particles, double dt) {
-  for (std::size_t k = 0; k < particles.size(); ++k) {
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
     particles.velocity[k] += (dt / particles.mass[k]) * particles.force[k];
     particles.angular_velocity[k] += particles.torque[k].cwiseQuotient(particles.inertia[k]) * dt;
   }
@@ -21,7 +21,7 @@ void drift(Particles& particles, PeriodicCell& cell, const Vec3& strain_rate, do
   const Vec3 new_lengths = old_lengths.cwiseProduct(Vec3::Ones() + dt * strain_rate);
   const Vec3 scale = new_lengths.cwiseQuotient(old_lengths);
   cell.set_lengths(new_lengths);
-  for (std::size_t k = 0; k < particles.size(); ++k) {
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
     const Vec3 moved = (particles.position[k] + dt * particles.velocity[k]).cwiseProduct(scale);
     particles.position[k] = cell.wrap(moved);
   }

@@ -18,7 +18,7 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
   c.time_step = s.time_step;
   c.cell = simulation.cell_state();
   const Particles& p = simulation.particles();
-  const std::size_t n = p.size();
+  const std::size_t n = p.n_owned; // each rank writes the particles it owns
   c.particles.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     c.particles.id[k] = p.id[k];
@@ -38,7 +38,7 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
   const auto& history = simulation.neighbors().history();
   const Vec3& lengths = simulation.cell().lengths();
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    if (records[k].overlap <= 0) continue;
+    if (records[k].overlap <= 0 || pairs[k].i >= p.n_owned) continue; // written by the owner of the lower id
     const auto i = pairs[k].i, j = pairs[k].j;
     const Vec3 branch = records[k].distance * records[k].normal;
     const Vec3 raw = p.position[j] - p.position[i];
@@ -91,7 +91,7 @@ SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, co
   return s;
 }
 
-Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path) {
+Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path, const mpi::Comm& comm) {
   const auto& rows = checkpoint.particles;
   Particles particles;
   particles.resize(rows.size());
@@ -110,33 +110,8 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
   }
   const SimulationSettings settings = settings_from_checkpoint(checkpoint, path);
   Simulation simulation(std::move(particles), checkpoint.cell, settings, checkpoint.time, checkpoint.step,
-                        true);
-  // On one rank index == id, so the stored ids are the local indices.
-  NeighborList& neighbors = simulation.neighbors();
-  const Particles& p = simulation.particles();
-  const auto& contacts = checkpoint.contacts;
-  for (std::size_t c = 0; c < contacts.size(); ++c) {
-    const auto i = static_cast<std::uint32_t>(contacts.particles[c][0]);
-    const auto j = static_cast<std::uint32_t>(contacts.particles[c][1]);
-    const std::int64_t k = neighbors.find(p, i, j);
-    if (k < 0) {
-      throw FileError(fmt::format(
-          "checkpoint '{}': contact ({}, {}) is not within reach of the restored positions", path, i, j));
-    }
-    auto& record = neighbors.records()[static_cast<std::size_t>(k)];
-    record.normal = contacts.normal[c];
-    record.overlap = contacts.overlap[c];
-    record.distance = p.radius[i] + p.radius[j] - contacts.overlap[c];
-    record.force_on_i = contacts.force[c];
-    const double effective_radius = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
-    record.normal_force =
-        hertz_normal_force(contact_modulus(settings.material), effective_radius, contacts.overlap[c]);
-    record.tangential_stiffness =
-        mindlin_tangential_stiffness(settings.material, effective_radius, contacts.overlap[c]);
-    auto& history = neighbors.history()[static_cast<std::size_t>(k)];
-    history.tangential_force = contacts.tangential_force[c];
-    history.sliding = contacts.sliding[c] != 0;
-  }
+                        true, comm);
+  simulation.restore_contacts(checkpoint.contacts, path);
   simulation.restore_stress();
   return simulation;
 }

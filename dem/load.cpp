@@ -67,7 +67,7 @@ void start_loading(Simulation& simulation, const DemConfig& config) {
   simulation.set_friction(config.material.friction);
   simulation.set_damping(config.integration.damping);
   // The servoed axis must outrun dilatancy but not the assembly's own response.
-  simulation.set_servo_max_rate(5.0 * rate);
+  simulation.set_servo_max_rate(20.0 * rate);
   h5::CellState state = simulation.cell_state();
   state.mode = {AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::stress};
   state.target = Vec3(-rate, 0.0, -config.load.mean_stress);
@@ -87,7 +87,6 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
   } else {
     history.append(history_row(simulation, config));
   }
-  const mpi::Comm self(MPI_COMM_SELF);
   LoadSummary summary;
   const std::int64_t start_step = simulation.step_count();
   double next_history =
@@ -116,8 +115,9 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
     if (next_checkpoint < load.checkpoint_strains.size() &&
         strain >= load.checkpoint_strains[next_checkpoint]) {
       const std::string path = load_checkpoint_path(output_dir, next_checkpoint);
-      h5::write_checkpoint(path, to_checkpoint(simulation, config.particles.d50, {}), provenance, self);
-      history.write(output_dir, provenance);
+      h5::write_checkpoint(path, to_checkpoint(simulation, config.particles.d50, {}), provenance,
+                           simulation.comm());
+      if (simulation.comm().is_root()) history.write(output_dir, provenance);
       logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e})", next_checkpoint,
                    strain, path, mean_stress_compression_positive(simulation.stress()),
                    simulation.servo_error());
@@ -125,7 +125,8 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
       ++next_checkpoint;
     }
   }
-  history.write(output_dir, provenance);
+  if (simulation.comm().is_root()) history.write(output_dir, provenance);
+  simulation.comm().barrier(); // the history is on disk before anyone reports success
   const auto& ratio = history.column("stress_ratio");
   const auto& strain_11 = history.column("strain_11");
   for (std::size_t r = 0; r < ratio.size(); ++r) {

@@ -38,9 +38,6 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const dem::DemConfig config = dem::read_dem_config(reader);
   if (cli::finish_config(reader, options, comm)) return 0;
   const Logger logger = make_logger("aniso-dem", comm, options.log_level);
-  require_input(comm.size() == 1,
-                "aniso-dem runs on one rank in this version (domain decomposition is issue 3's "
-                "remaining work); run it without mpiexec -n > 1");
 
   std::optional<h5::Checkpoint> checkpoint;
   if (load->parsed()) {
@@ -55,7 +52,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const std::string command = cli::join_command_line(argc, argv);
   if (prepare->parsed()) {
     const auto provenance = h5::make_provenance("aniso-dem prepare", reader.effective_toml(), command, comm);
-    dem::PreparedAssembly prepared = dem::prepare_assembly(config, logger);
+    dem::PreparedAssembly prepared = dem::prepare_assembly(config, logger, comm);
     const std::string path = config.output_dir + "/prepared.h5";
     h5::write_checkpoint(path,
                          dem::to_checkpoint(*prepared.simulation, config.particles.d50, prepared.rng_state),
@@ -66,7 +63,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
     return 0;
   }
   const auto provenance = h5::make_provenance("aniso-dem load", reader.effective_toml(), command, comm);
-  dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input);
+  dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input, comm);
   if (!resume) dem::start_loading(simulation, config);
   const dem::LoadSummary summary =
       dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume);
@@ -74,7 +71,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
       "load done: strain {:.4g} in {} steps, {:.1f} s wall ({:.3g} particle-steps/s); peak stress ratio "
       "{:.4f} at strain {:.4g}",
       summary.final_strain, summary.steps, summary.wall_seconds,
-      static_cast<double>(summary.steps) * static_cast<double>(simulation.particles().size()) /
+      static_cast<double>(summary.steps) * static_cast<double>(simulation.n_particles()) /
           summary.wall_seconds,
       summary.peak_stress_ratio, summary.peak_strain);
   return 0;

@@ -1,70 +1,102 @@
 #include "dem/measures.hpp"
 
 #include "common/exact_sum.hpp"
+#include "common/exchange.hpp"
 
 #include <array>
 #include <cmath>
+#include <span>
 
 namespace aniso::dem {
+namespace {
 
-Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors) {
+// A contact is counted by the rank that owns its lower-id particle (pair.i).
+bool counted_here(const Particles& particles, const Pair& pair, const ContactRecord& record) {
+  return record.overlap > 0 && pair.i < particles.n_owned;
+}
+
+} // namespace
+
+Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors,
+                    const mpi::Comm& comm) {
   std::array<ExactSum, 9> sums;
   const auto& records = neighbors.records();
-  for (const ContactRecord& record : records) {
-    if (record.overlap <= 0) continue;
-    const Vec3 branch = record.distance * record.normal;
+  const auto& pairs = neighbors.pairs();
+  for (std::size_t c = 0; c < records.size(); ++c) {
+    if (!counted_here(particles, pairs[c], records[c])) continue;
+    const Vec3 branch = records[c].distance * records[c].normal;
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
-        sums[static_cast<std::size_t>(3 * a + b)].add(branch[a] * record.force_on_i[b]);
+        sums[static_cast<std::size_t>(3 * a + b)].add(branch[a] * records[c].force_on_i[b]);
   }
-  for (std::size_t k = 0; k < particles.size(); ++k) {
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
     const Vec3& v = particles.velocity[k];
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         sums[static_cast<std::size_t>(3 * a + b)].add(-particles.mass[k] * v[a] * v[b]);
   }
+  const std::vector<ExactSum> total = comm.sum_exact(std::span<const ExactSum>(sums));
   Mat3 stress;
   const double volume = cell.volume();
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
-      stress(a, b) = sums[static_cast<std::size_t>(3 * a + b)].value() / volume;
+      stress(a, b) = total[static_cast<std::size_t>(3 * a + b)].value() / volume;
   return stress;
 }
 
 StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell,
-                            const NeighborList& neighbors, double solid_volume) {
+                            const NeighborList& neighbors, double solid_volume, std::int64_t n_particles,
+                            const mpi::Comm& comm) {
   StateMeasures m;
-  m.stress = average_stress(particles, cell, neighbors);
+  m.stress = average_stress(particles, cell, neighbors, comm);
   m.mean_stress = mean_stress_compression_positive(m.stress);
   m.deviatoric_stress = deviatoric_q(m.stress);
   m.void_ratio = (cell.volume() - solid_volume) / solid_volume;
 
-  const std::size_t n = particles.size();
-  std::vector<int> degree(n, 0);
+  // Energies and the contact list by ids, counted once each.
   const auto& pairs = neighbors.pairs();
   const auto& records = neighbors.records();
   const auto& history = neighbors.history();
-  ExactSum elastic;
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    if (records[k].overlap <= 0) continue;
-    ++m.n_contacts;
-    ++degree[pairs[k].i];
-    ++degree[pairs[k].j];
-    elastic.add(0.4 * records[k].normal_force * records[k].overlap); // integral of the Hertz force
-    // Incremental Mindlin: the spring holds the elastic tangential force F_t; its energy is F_t^2 / (2 k_t).
-    elastic.add(0.5 * history[k].tangential_force.squaredNorm() / records[k].tangential_stiffness);
+  std::array<ExactSum, 2> energy; // kinetic, elastic
+  std::vector<char> contact_ids;
+  ByteWriter writer(contact_ids);
+  for (std::size_t c = 0; c < pairs.size(); ++c) {
+    if (!counted_here(particles, pairs[c], records[c])) continue;
+    writer.put(particles.id[pairs[c].i]);
+    writer.put(particles.id[pairs[c].j]);
+    energy[1].add(0.4 * records[c].normal_force * records[c].overlap); // integral of the Hertz force
+    // Incremental Mindlin: the history holds the elastic tangential force F_t; its energy is F_t^2 / (2 k_t).
+    energy[1].add(0.5 * history[c].tangential_force.squaredNorm() / records[c].tangential_stiffness);
   }
-  m.elastic_energy = elastic.value();
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
+    energy[0].add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
+    energy[0].add(0.5 * particles.angular_velocity[k].dot(
+                            particles.inertia[k].cwiseProduct(particles.angular_velocity[k])));
+  }
+  const std::vector<ExactSum> energies = comm.sum_exact(std::span<const ExactSum>(energy));
+  m.kinetic_energy = energies[0].value();
+  m.elastic_energy = energies[1].value();
+
+  // Rattlers need the whole contact graph: every rank assembles it from everyone's contacts.
+  const auto n = static_cast<std::size_t>(n_particles);
+  std::vector<std::vector<std::uint32_t>> partners(n);
+  std::vector<int> degree(n, 0);
+  for (const auto& buffer : all_gather_bytes(comm, contact_ids)) {
+    ByteReader reader(buffer);
+    while (!reader.done()) {
+      const auto a = static_cast<std::uint32_t>(reader.get<std::uint64_t>());
+      const auto b = static_cast<std::uint32_t>(reader.get<std::uint64_t>());
+      partners[a].push_back(b);
+      partners[b].push_back(a);
+      ++degree[a];
+      ++degree[b];
+      ++m.n_contacts;
+    }
+  }
   m.coordination = n ? 2.0 * static_cast<double>(m.n_contacts) / static_cast<double>(n) : 0.0;
   // Rattlers: with friction a particle needs at least two contacts to carry load
   // (docs/methods/dem.md); removing one lowers its partners' counts, so peel them
   // off with a work list until none is left.
-  std::vector<std::vector<std::uint32_t>> partners(n);
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    if (records[k].overlap <= 0) continue;
-    partners[pairs[k].i].push_back(pairs[k].j);
-    partners[pairs[k].j].push_back(pairs[k].i);
-  }
   constexpr int min_contacts = 2;
   std::vector<bool> rattler(n, false);
   std::vector<std::uint32_t> work;
@@ -87,20 +119,14 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
   std::int64_t n_kept = 0, n_kept_contacts = 0;
   for (std::size_t k = 0; k < n; ++k)
     n_kept += rattler[k] ? 0 : 1;
-  for (std::size_t c = 0; c < pairs.size(); ++c) {
-    if (records[c].overlap > 0 && !rattler[pairs[c].i] && !rattler[pairs[c].j]) ++n_kept_contacts;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (rattler[k]) continue;
+    for (std::uint32_t other : partners[k])
+      n_kept_contacts += (!rattler[other] && other > k) ? 1 : 0;
   }
   m.n_rattlers = static_cast<std::int64_t>(n) - n_kept;
   m.coordination_no_rattlers =
       n_kept ? 2.0 * static_cast<double>(n_kept_contacts) / static_cast<double>(n_kept) : 0.0;
-
-  ExactSum kinetic;
-  for (std::size_t k = 0; k < n; ++k) {
-    kinetic.add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
-    kinetic.add(0.5 * particles.angular_velocity[k].dot(
-                          particles.inertia[k].cwiseProduct(particles.angular_velocity[k])));
-  }
-  m.kinetic_energy = kinetic.value();
   return m;
 }
 

@@ -4,6 +4,7 @@
 // coordination numbers with and without rattlers, energies.
 
 #include "common/cell.hpp"
+#include "common/mpi.hpp"
 #include "dem/neighbors.hpp"
 #include "dem/particles.hpp"
 
@@ -12,7 +13,9 @@ namespace aniso::dem {
 /// Average Cauchy stress, tension positive [Pa]: sigma = (1/V) sum_c d (x) f_i - (1/V) sum_p m v (x) v,
 /// with d the branch vector from i to j and f_i the force on i (so compression is negative).
 /// Summed exactly (ExactSum), so the result does not depend on the order of contacts.
-Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors);
+/// Each contact counts on the rank that owns its lower-id particle (collective).
+Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors,
+                    const mpi::Comm& comm);
 
 struct StateMeasures {
   Mat3 stress = Mat3::Zero();   ///< tension positive [Pa]
@@ -28,8 +31,10 @@ struct StateMeasures {
   double elastic_energy = 0; ///< Hertz normal plus tangential spring energy [J]
 };
 
+/// Collective; `n_particles` and `solid_volume` are global.
 StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell,
-                            const NeighborList& neighbors, double solid_volume);
+                            const NeighborList& neighbors, double solid_volume, std::int64_t n_particles,
+                            const mpi::Comm& comm);
 
 /// Inertial number I = strain rate * D50 * sqrt(density / p) (paper: quasi-static when small).
 double inertial_number(double strain_rate, double d50, double density, double mean_stress);

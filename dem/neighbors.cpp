@@ -24,10 +24,14 @@ bool pair_less(const Particles& particles, const Pair& a, const Pair& b) {
 
 } // namespace
 
-void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
+void NeighborList::build(const Particles& particles, const PeriodicCell& cell,
+                         const std::vector<HistoryRecord>& carried) {
   const std::size_t n = particles.size();
+  const std::size_t n_owned = particles.n_owned;
   const Vec3& lengths = cell.lengths();
-  max_radius_ = n ? *std::max_element(particles.radius.begin(), particles.radius.end()) : 0.0;
+  max_radius_ = global_max_radius_ > 0 ? global_max_radius_
+                : n                    ? *std::max_element(particles.radius.begin(), particles.radius.end())
+                                       : 0.0;
   const double bin_reach = 2 * max_radius_ + skin_;
   for (int a = 0; a < 3; ++a) {
     // The minimum image is unique only if no pair can interact through two images.
@@ -90,6 +94,7 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
             for (int q = bin_start[other]; q < bin_start[other + 1]; ++q) {
               const std::uint32_t j = binned[static_cast<std::size_t>(q)];
               if (particles.id[j] <= particles.id[i]) continue;
+              if (i >= n_owned && j >= n_owned) continue; // two ghosts: their owners compute it
               const double reach = particles.radius[i] + particles.radius[j] + skin_;
               if (separation(particles.position[i], particles.position[j], lengths).squaredNorm() <
                   reach * reach) {
@@ -103,29 +108,39 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell) {
   }
   std::sort(fresh.begin(), fresh.end(),
             [&](const Pair& a, const Pair& b) { return pair_less(particles, a, b); });
-  // Carry history over by merging the two sorted lists. Indices may have changed
-  // (migration), but the old list was sorted by the same ids.
+  // Carry history over by ids: from the previous list (both are sorted by ids),
+  // then from histories that arrived with migrating particles.
+  std::vector<std::array<std::uint64_t, 2>> fresh_ids(fresh.size());
+  for (std::size_t k = 0; k < fresh.size(); ++k)
+    fresh_ids[k] = {particles.id[fresh[k].i], particles.id[fresh[k].j]};
   std::vector<ContactHistory> fresh_history(fresh.size());
   std::size_t old_k = 0;
-  for (std::size_t k = 0; k < fresh.size() && old_k < pairs_.size(); ++k) {
-    while (old_k < pairs_.size() && pair_less(particles, pairs_[old_k], fresh[k]))
+  for (std::size_t k = 0; k < fresh.size() && old_k < pair_ids_.size(); ++k) {
+    while (old_k < pair_ids_.size() && pair_ids_[old_k] < fresh_ids[k])
       ++old_k;
-    if (old_k < pairs_.size() && !pair_less(particles, fresh[k], pairs_[old_k]))
-      fresh_history[k] = history_[old_k];
+    if (old_k < pair_ids_.size() && pair_ids_[old_k] == fresh_ids[k]) fresh_history[k] = history_[old_k];
   }
+  for (const HistoryRecord& record : carried) {
+    const std::array<std::uint64_t, 2> key{record.id_i, record.id_j};
+    const auto it = std::lower_bound(fresh_ids.begin(), fresh_ids.end(), key);
+    if (it != fresh_ids.end() && *it == key)
+      fresh_history[static_cast<std::size_t>(it - fresh_ids.begin())] = record.history;
+  }
+  pair_ids_ = std::move(fresh_ids);
   pairs_ = std::move(fresh);
   history_ = std::move(fresh_history);
   records_.assign(pairs_.size(), ContactRecord{});
-  position_at_build_ = particles.position;
+  position_at_build_.assign(particles.position.begin(),
+                            particles.position.begin() + static_cast<std::ptrdiff_t>(n_owned));
   lengths_at_build_ = lengths;
   ++n_builds_;
 }
 
 bool NeighborList::needs_rebuild(const Particles& particles, const PeriodicCell& cell) const {
-  if (position_at_build_.size() != particles.size()) return true;
+  if (position_at_build_.size() != particles.n_owned) return true;
   const Vec3 scale = cell.lengths().cwiseQuotient(lengths_at_build_);
   double max_shift_squared = 0;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
+  for (std::size_t i = 0; i < particles.n_owned; ++i) {
     const Vec3 affine = position_at_build_[i].cwiseProduct(scale);
     max_shift_squared =
         std::max(max_shift_squared, separation(affine, particles.position[i], cell.lengths()).squaredNorm());

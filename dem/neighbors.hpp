@@ -8,6 +8,7 @@
 #include "dem/contact_law.hpp"
 #include "dem/particles.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -28,16 +29,27 @@ struct ContactRecord {
   double tangential_stiffness = 0; ///< [N/m], for the elastic energy
 };
 
+/// The history of a contact, keyed by particle ids: what travels with a migrating particle.
+struct HistoryRecord {
+  std::uint64_t id_i = 0; ///< lower id
+  std::uint64_t id_j = 0;
+  ContactHistory history;
+};
+
 class NeighborList {
 public:
   /// `skin` is the extra distance beyond touching that a pair may close before the next rebuild [m].
   explicit NeighborList(double skin) : skin_(skin) {}
 
-  /// Rebuilds the pairs whose surfaces are closer than the skin, and carries the
-  /// contact history of pairs that survive over from the previous list.
-  void build(const Particles& particles, const PeriodicCell& cell);
-  /// True when particles may have moved far enough (fluctuation plus cell strain) to miss a pair.
+  /// Rebuilds the pairs whose surfaces are closer than the skin and of which at least one
+  /// particle is owned, and carries the contact history of pairs that survive over from the
+  /// previous list (matched by ids) or from `carried` (histories that came with migrating particles).
+  void build(const Particles& particles, const PeriodicCell& cell,
+             const std::vector<HistoryRecord>& carried = {});
+  /// True when owned particles may have moved far enough (fluctuation plus cell strain) to miss a pair.
   [[nodiscard]] bool needs_rebuild(const Particles& particles, const PeriodicCell& cell) const;
+  /// The largest radius of all particles on all ranks, so that every rank takes the same decisions.
+  void set_max_radius(double radius) { global_max_radius_ = radius; }
 
   [[nodiscard]] const std::vector<Pair>& pairs() const { return pairs_; }
   [[nodiscard]] std::vector<ContactHistory>& history() { return history_; }
@@ -55,6 +67,9 @@ private:
   std::vector<Pair> pairs_;
   std::vector<ContactHistory> history_;
   std::vector<ContactRecord> records_;
+  std::vector<std::array<std::uint64_t, 2>>
+      pair_ids_; ///< ids of pairs_, for carrying history across migration
+  double global_max_radius_ = 0;
   std::vector<Vec3> position_at_build_;
   Vec3 lengths_at_build_ = Vec3::Ones();
   double max_radius_ = 0;

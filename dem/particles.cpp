@@ -2,12 +2,29 @@
 
 #include "common/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 namespace aniso::dem {
 
+void Particles::truncate(std::size_t n) {
+  id.resize(n);
+  radius.resize(n);
+  aspect_ratio.resize(n);
+  mass.resize(n);
+  inertia.resize(n);
+  position.resize(n);
+  orientation.resize(n);
+  velocity.resize(n);
+  angular_velocity.resize(n);
+  force.resize(n);
+  torque.resize(n);
+  n_owned = std::min(n_owned, n);
+}
+
 void Particles::resize(std::size_t n) {
+  n_owned = n;
   id.resize(n);
   radius.resize(n);
   aspect_ratio.resize(n);
@@ -31,6 +48,7 @@ void Particles::add(std::uint64_t particle_id, double particle_radius, double pa
   const double volume = particle_volume(particle_radius, particle_aspect_ratio);
   const double particle_mass = density * volume;
   const double moment = 0.4 * particle_mass * particle_radius * particle_radius;
+  n_owned = id.size() + 1;
   id.push_back(particle_id);
   radius.push_back(particle_radius);
   aspect_ratio.push_back(particle_aspect_ratio);
@@ -46,7 +64,7 @@ void Particles::add(std::uint64_t particle_id, double particle_radius, double pa
 
 double Particles::solid_volume() const {
   double total = 0;
-  for (std::size_t i = 0; i < size(); ++i)
+  for (std::size_t i = 0; i < n_owned; ++i)
     total += particle_volume(radius[i], aspect_ratio[i]);
   return total;
 }

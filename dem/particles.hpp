@@ -24,12 +24,18 @@ struct Particles {
   std::vector<Vec3> force;            ///< [N]
   std::vector<Vec3> torque;           ///< [N m]
 
+  /// Particles [0, n_owned) belong to this rank; the rest are ghost copies of other ranks' particles.
+  std::size_t n_owned = 0;
+
   [[nodiscard]] std::size_t size() const { return id.size(); }
+  /// Resizes every array; all n particles count as owned.
   void resize(std::size_t n);
+  /// Keeps the first n entries (used to drop ghosts).
+  void truncate(std::size_t n);
   /// Appends one particle at rest with identity orientation.
   void add(std::uint64_t particle_id, double particle_radius, double particle_aspect_ratio, double density,
            const Vec3& particle_position);
-  /// Total solid volume of the particles [m^3].
+  /// Solid volume of the owned particles [m^3].
   [[nodiscard]] double solid_volume() const;
 };
 

@@ -1,27 +1,32 @@
 #include "dem/prepare.hpp"
 
 #include "common/error.hpp"
+#include "common/exact_sum.hpp"
 #include "dem/settings.hpp"
 #include "dem/size_distribution.hpp"
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 namespace aniso::dem {
 namespace {
 
 using h5::AxisMode;
 
-double kinetic_energy(const Particles& particles) {
-  double energy = 0;
-  for (std::size_t k = 0; k < particles.size(); ++k) {
-    energy += 0.5 * particles.mass[k] * particles.velocity[k].squaredNorm();
-    energy += 0.5 * particles.angular_velocity[k].dot(
-                        particles.inertia[k].cwiseProduct(particles.angular_velocity[k]));
+// Kinetic energy of all particles on all ranks (collective, exact).
+double kinetic_energy(const Simulation& simulation) {
+  const Particles& particles = simulation.particles();
+  ExactSum energy;
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
+    energy.add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
+    energy.add(0.5 * particles.angular_velocity[k].dot(
+                         particles.inertia[k].cwiseProduct(particles.angular_velocity[k])));
   }
-  return energy;
+  return simulation.comm().sum_exact(energy).value();
 }
 
 h5::CellState isotropic_strain_control(const Simulation& simulation, double rate) {
@@ -54,8 +59,7 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
     simulation.step();
     if (simulation.step_count() % interval != 0) continue;
     const double p = mean_stress_compression_positive(simulation.stress());
-    const double energy_ratio =
-        kinetic_energy(simulation.particles()) / (std::max(p, 1.0) * simulation.cell().volume());
+    const double energy_ratio = kinetic_energy(simulation) / (std::max(p, 1.0) * simulation.cell().volume());
     progress.update(std::clamp(p, 0.0, prepare.seize_stress));
     const bool above = p >= prepare.seize_stress;
     if (above && energy_ratio < 1e-4) break;
@@ -77,19 +81,28 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
   return simulation.step_count() - start;
 }
 
+// Random velocities of rms `rms_speed`, drawn in id order on every rank so that the
+// result does not depend on the decomposition; the net momentum is removed.
 void agitate(Simulation& simulation, double rms_speed, RandomStream& stream) {
   Particles& particles = simulation.particles();
   const double component = rms_speed / std::sqrt(3.0);
-  Vec3 momentum = Vec3::Zero();
-  double total_mass = 0;
-  for (std::size_t k = 0; k < particles.size(); ++k) {
-    particles.velocity[k] = Vec3(stream.normal(), stream.normal(), stream.normal()) * component;
-    momentum += particles.mass[k] * particles.velocity[k];
-    total_mass += particles.mass[k];
+  const auto n_total = static_cast<std::size_t>(simulation.n_particles());
+  std::vector<Vec3> drawn(n_total);
+  for (auto& velocity : drawn) {
+    const double x = stream.normal(), y = stream.normal(), z = stream.normal();
+    velocity = Vec3(x, y, z) * component;
   }
-  const Vec3 drift = momentum / total_mass; // no net motion of the assembly
-  for (auto& velocity : particles.velocity)
-    velocity -= drift;
+  std::array<ExactSum, 4> sums; // momentum x, y, z and mass
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
+    particles.velocity[k] = drawn[particles.id[k]];
+    for (int a = 0; a < 3; ++a)
+      sums[static_cast<std::size_t>(a)].add(particles.mass[k] * particles.velocity[k][a]);
+    sums[3].add(particles.mass[k]);
+  }
+  const std::vector<ExactSum> total = simulation.comm().sum_exact(std::span<const ExactSum>(sums));
+  const Vec3 drift = Vec3(total[0].value(), total[1].value(), total[2].value()) / total[3].value();
+  for (std::size_t k = 0; k < particles.n_owned; ++k)
+    particles.velocity[k] -= drift;
 }
 
 void consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger) {
@@ -109,7 +122,7 @@ void consolidate(Simulation& simulation, const DemConfig& config, double rate, c
     if (simulation.step_count() % interval != 0) continue;
     const double p = mean_stress_compression_positive(simulation.stress());
     const double error = std::abs(p - p0) / p0;
-    const double energy_ratio = kinetic_energy(simulation.particles()) / (p * simulation.cell().volume());
+    const double energy_ratio = kinetic_energy(simulation) / (p * simulation.cell().volume());
     progress.update(std::clamp(1.0 - error, 0.0, 1.0));
     // Require the state to hold for 20 consecutive checks, so a passing oscillation does not count.
     settled_checks =
@@ -126,7 +139,8 @@ void consolidate(Simulation& simulation, const DemConfig& config, double rate, c
 
 } // namespace
 
-Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement) {
+Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement,
+                           const mpi::Comm& comm) {
   const auto& pc = config.particles;
   const Grading grading{pc.diameter_min, pc.d50, pc.diameter_max};
   const std::vector<double> diameters = sample_diameters(grading, static_cast<std::size_t>(pc.count), sizes);
@@ -165,14 +179,14 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
   SimulationSettings settings = settings_from_config(config, diameters.back());
   settings.material.friction = config.material.friction_prepare;
   settings.material.damping_ratio = config.prepare.damping;
-  return Simulation(std::move(particles), state, settings, 0.0, 0, false);
+  return Simulation(std::move(particles), state, settings, 0.0, 0, false, comm);
 }
 
-PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger) {
+PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm) {
   RandomStream sizes(config.seed, 0), placement(config.seed, 1), agitation(config.seed, 2);
   const auto& pc = config.particles;
   const auto& pr = config.prepare;
-  Simulation simulation = sparse_assembly(config, sizes, placement);
+  Simulation simulation = sparse_assembly(config, sizes, placement, comm);
   const double rate =
       strain_rate_for_inertial_number(pr.inertial_number, pc.d50, pc.density, pr.confining_pressure);
   logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction rate "

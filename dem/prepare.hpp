@@ -23,9 +23,12 @@ struct PreparedAssembly {
   std::vector<std::array<std::uint64_t, 4>> rng_state;
 };
 
-/// Sparse random arrangement without overlaps in a cell of the configured proportions.
-Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement);
+/// Sparse random arrangement without overlaps in a cell of the configured proportions,
+/// generated identically on every rank and decomposed over `comm` (collective).
+Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement,
+                           const mpi::Comm& comm);
 
-PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger);
+/// The whole preparation protocol (collective); the result does not depend on the rank count.
+PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm);
 
 } // namespace aniso::dem

@@ -1,63 +1,116 @@
 #include "dem/simulation.hpp"
 
 #include "common/error.hpp"
+#include "common/exact_sum.hpp"
 #include "dem/forces.hpp"
 #include "dem/integrator.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace aniso::dem {
 
 Simulation::Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings,
-                       double time, std::int64_t step, bool forces_valid)
+                       double time, std::int64_t step, bool forces_valid, const mpi::Comm& comm)
     : particles_(std::move(particles)), cell_(control.lengths, control.reference_lengths), control_(control),
-      settings_(settings), neighbors_(settings.skin), time_(time), step_(step) {
+      settings_(settings), neighbors_(settings.skin), domain_(comm), time_(time), step_(step) {
+  // Every rank holds every particle here, so these are global without communication.
   require_stable_time_step(settings_.time_step,
                            critical_time_step(particles_, settings_.density, settings_.material));
-  solid_volume_ = particles_.solid_volume();
-  neighbors_.build(particles_, cell_);
-  // A restored run keeps its stored forces; the caller restores per-pair records and history.
+  n_particles_ = static_cast<std::int64_t>(particles_.size());
+  ExactSum solid;
+  for (std::size_t k = 0; k < particles_.size(); ++k) {
+    solid.add(particle_volume(particles_.radius[k], particles_.aspect_ratio[k]));
+  }
+  solid_volume_ = solid.value();
+  const double max_radius = *std::max_element(particles_.radius.begin(), particles_.radius.end());
+  neighbors_.set_max_radius(max_radius);
+  reach_ = 2 * max_radius + settings_.skin;
+  // Deal particles round-robin, then let the first decomposition send each to the rank of its bin.
+  if (comm.size() > 1) {
+    Particles dealt;
+    for (std::size_t k = static_cast<std::size_t>(comm.rank()); k < particles_.size();
+         k += static_cast<std::size_t>(comm.size())) {
+      dealt.id.push_back(particles_.id[k]);
+      dealt.radius.push_back(particles_.radius[k]);
+      dealt.aspect_ratio.push_back(particles_.aspect_ratio[k]);
+      dealt.mass.push_back(particles_.mass[k]);
+      dealt.inertia.push_back(particles_.inertia[k]);
+      dealt.position.push_back(particles_.position[k]);
+      dealt.orientation.push_back(particles_.orientation[k]);
+      dealt.velocity.push_back(particles_.velocity[k]);
+      dealt.angular_velocity.push_back(particles_.angular_velocity[k]);
+      dealt.force.push_back(particles_.force[k]);
+      dealt.torque.push_back(particles_.torque[k]);
+    }
+    dealt.n_owned = dealt.size();
+    particles_ = std::move(dealt);
+  }
+  rebuild_decomposition();
   if (!forces_valid) {
     compute_forces();
-    stress_ = average_stress(particles_, cell_, neighbors_);
+    stress_ = average_stress(particles_, cell_, neighbors_, comm);
   }
+}
+
+void Simulation::rebuild_decomposition() {
+  std::vector<Vec3> owned(particles_.position.begin(),
+                          particles_.position.begin() + static_cast<std::ptrdiff_t>(particles_.n_owned));
+  if (domain_.needs_partition(cell_, reach_, particles_.n_owned, 1.2))
+    domain_.partition(cell_, reach_, owned);
+  const std::vector<HistoryRecord> carried = halo_.migrate(particles_, cell_, domain_, neighbors_);
+  halo_.exchange_ghosts(particles_, cell_, domain_);
+  neighbors_.build(particles_, cell_, carried);
 }
 
 void Simulation::compute_forces() {
   compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material, settings_.time_step,
                          neighbors_);
   // Explosion guard: an overlap this large means the step or the loading rate is far too large.
+  // Every rank must stop together, so the verdict is shared before anyone throws.
   const auto& records = neighbors_.records();
   const auto& pairs = neighbors_.pairs();
-  for (std::size_t k = 0; k < records.size(); ++k) {
+  std::string explosion;
+  for (std::size_t k = 0; k < records.size() && explosion.empty(); ++k) {
     const double smaller = std::min(particles_.radius[pairs[k].i], particles_.radius[pairs[k].j]);
     if (records[k].overlap > settings_.explosion_overlap * smaller || std::isnan(records[k].overlap)) {
-      throw NumericalError(fmt::format("step {}: overlap of particles {} and {} is {:.3g} of the smaller "
-                                       "radius (limit {}): the run exploded; "
-                                       "lower the time step fraction or the loading rate",
-                                       step_, particles_.id[pairs[k].i], particles_.id[pairs[k].j],
-                                       records[k].overlap / smaller, settings_.explosion_overlap));
+      explosion =
+          fmt::format("step {}: overlap of particles {} and {} is {:.3g} of the smaller radius (limit {}): "
+                      "the run exploded; lower the time step fraction or the loading rate",
+                      step_ + 1, particles_.id[pairs[k].i], particles_.id[pairs[k].j],
+                      records[k].overlap / smaller, settings_.explosion_overlap);
     }
+  }
+  const bool any_explosion = comm().size() > 1 ? comm().any(!explosion.empty()) : !explosion.empty();
+  if (any_explosion) {
+    throw NumericalError(
+        explosion.empty() ? fmt::format("step {}: the run exploded on another rank", step_ + 1) : explosion);
   }
 }
 
 void Simulation::update_control() {
-  stress_ = average_stress(particles_, cell_, neighbors_);
+  stress_ = average_stress(particles_, cell_, neighbors_, comm());
   if (!std::isfinite(stress_.sum())) {
     throw NumericalError(fmt::format("step {}: the stress is not finite: the run exploded", step_));
   }
   const double interval = static_cast<double>(settings_.control_interval) * settings_.time_step;
-  update_strain_rates(control_, stress_, axial_stiffness(neighbors_, cell_.volume()), interval,
-                      settings_.servo);
+  update_strain_rates(control_, stress_, axial_stiffness(neighbors_, particles_, cell_.volume(), comm()),
+                      interval, settings_.servo);
 }
 
 void Simulation::step() {
   const double dt = settings_.time_step;
   kick(particles_, 0.5 * dt);
   drift(particles_, cell_, control_.strain_rate, dt);
-  if (neighbors_.needs_rebuild(particles_, cell_)) neighbors_.build(particles_, cell_);
+  const bool stale = neighbors_.needs_rebuild(particles_, cell_);
+  if (comm().size() > 1 ? comm().any(stale) : stale) {
+    rebuild_decomposition();
+  } else {
+    halo_.update_ghosts(particles_, domain_);
+  }
   compute_forces();
   kick(particles_, 0.5 * dt);
   time_ += dt;
@@ -66,11 +119,44 @@ void Simulation::step() {
 }
 
 StateMeasures Simulation::measure() const {
-  return measure_state(particles_, cell_, neighbors_, solid_volume_);
+  return measure_state(particles_, cell_, neighbors_, solid_volume_, n_particles_, comm());
 }
 
 void Simulation::restore_stress() {
-  stress_ = average_stress(particles_, cell_, neighbors_);
+  stress_ = average_stress(particles_, cell_, neighbors_, comm());
+}
+
+void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::string& path) {
+  std::unordered_map<std::uint64_t, std::uint32_t> local;
+  for (std::uint32_t k = 0; k < particles_.size(); ++k)
+    local.emplace(particles_.id[k], k);
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const auto found_i = local.find(contacts.particles[c][0]);
+    const auto found_j = local.find(contacts.particles[c][1]);
+    if (found_i == local.end() || found_j == local.end()) continue; // held by other ranks
+    const std::uint32_t i = found_i->second, j = found_j->second;
+    if (i >= particles_.n_owned && j >= particles_.n_owned) continue;
+    const std::int64_t k = neighbors_.find(particles_, i, j);
+    if (k < 0) {
+      throw FileError(
+          fmt::format("checkpoint '{}': contact ({}, {}) is not within reach of the restored positions", path,
+                      contacts.particles[c][0], contacts.particles[c][1]));
+    }
+    auto& record = neighbors_.records()[static_cast<std::size_t>(k)];
+    const double radius_i = particles_.radius[i], radius_j = particles_.radius[j];
+    record.normal = contacts.normal[c];
+    record.overlap = contacts.overlap[c];
+    record.distance = radius_i + radius_j - contacts.overlap[c];
+    record.force_on_i = contacts.force[c];
+    const double effective_radius = radius_i * radius_j / (radius_i + radius_j);
+    record.normal_force =
+        hertz_normal_force(contact_modulus(settings_.material), effective_radius, record.overlap);
+    record.tangential_stiffness =
+        mindlin_tangential_stiffness(settings_.material, effective_radius, record.overlap);
+    auto& history = neighbors_.history()[static_cast<std::size_t>(k)];
+    history.tangential_force = contacts.tangential_force[c];
+    history.sliding = contacts.sliding[c] != 0;
+  }
 }
 
 double Simulation::servo_error() const {

@@ -7,11 +7,14 @@
 #include "common/h5/checkpoint.hpp"
 #include "dem/cell_control.hpp"
 #include "dem/contact_law.hpp"
+#include "dem/domain.hpp"
+#include "dem/halo.hpp"
 #include "dem/measures.hpp"
 #include "dem/neighbors.hpp"
 #include "dem/particles.hpp"
 
 #include <cstdint>
+#include <string>
 
 namespace aniso::dem {
 
@@ -27,19 +30,26 @@ struct SimulationSettings {
 
 class Simulation {
 public:
-  /// Takes the particles (with forces as stored, or zero) and the cell state; builds the contact list.
-  /// If `forces_valid` is false the initial forces are computed here; if true (a restart) the
-  /// caller restores contact history and records, then calls restore_stress().
+  /// Takes every particle (the same set on every rank, with forces as stored, or zero) and the
+  /// cell state; decomposes the cell over `comm`, keeps this rank's particles and builds the
+  /// contact list (collective). If `forces_valid` is false the initial forces are computed here;
+  /// if true (a restart) the caller then calls restore_contacts() and restore_stress().
   Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings,
-             double time, std::int64_t step, bool forces_valid);
+             double time, std::int64_t step, bool forces_valid, const mpi::Comm& comm);
 
   /// One velocity-Verlet step: half kick, drift and cell strain, contact list refresh if
   /// needed, forces, half kick, and every control_interval steps a stress measurement and servo update.
   void step();
 
   [[nodiscard]] StateMeasures measure() const;
-  /// Recomputes the stress from restored contact records (after a restart).
+  /// Restores contact history and per-pair records of the pairs this rank holds (after a restart).
+  void restore_contacts(const h5::ContactRows& contacts, const std::string& path);
+  /// Recomputes the stress from restored contact records (after a restart; collective).
   void restore_stress();
+  [[nodiscard]] const mpi::Comm& comm() const { return domain_.comm(); }
+  [[nodiscard]] const Domain& domain() const { return domain_; }
+  /// Number of particles on all ranks.
+  [[nodiscard]] std::int64_t n_particles() const { return n_particles_; }
   [[nodiscard]] const Mat3& stress() const { return stress_; } ///< at the last control update
   [[nodiscard]] double servo_error() const;
 
@@ -69,12 +79,17 @@ public:
 private:
   void compute_forces();
   void update_control();
+  void rebuild_decomposition();
 
   Particles particles_;
   PeriodicCell cell_;
   h5::CellState control_;
   SimulationSettings settings_;
   NeighborList neighbors_;
+  Domain domain_;
+  Halo halo_;
+  double reach_ = 0; ///< largest interaction range, 2 R_max + skin
+  std::int64_t n_particles_ = 0;
   Mat3 stress_ = Mat3::Zero();
   double time_ = 0;
   std::int64_t step_ = 0;

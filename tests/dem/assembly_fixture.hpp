@@ -38,7 +38,7 @@ inline DemConfig small_config(std::int64_t count = 150, std::uint64_t seed = 7) 
 /// Sparse random arrangement without overlaps (preparation friction and damping).
 inline Simulation loose_assembly(const DemConfig& config) {
   RandomStream sizes(config.seed, 0), placement(config.seed, 1);
-  return sparse_assembly(config, sizes, placement);
+  return sparse_assembly(config, sizes, placement, mpi::Comm(MPI_COMM_SELF));
 }
 
 /// Isotropic compaction rate [1/s] for an inertial number at the confining pressure.
@@ -75,7 +75,7 @@ inline void compact_until(Simulation& simulation, double rate, double pressure, 
 inline Simulation prepared_assembly(const DemConfig& config) {
   DemConfig one_cycle = config;
   one_cycle.prepare.cycles = 1;
-  PreparedAssembly prepared = prepare_assembly(one_cycle, make_silent_logger());
+  PreparedAssembly prepared = prepare_assembly(one_cycle, make_silent_logger(), mpi::Comm(MPI_COMM_SELF));
   return std::move(*prepared.simulation);
 }
 

@@ -145,7 +145,8 @@ CollisionResult collide(double time_step_fraction) {
   SimulationSettings settings = settings_from_config(config, config.particles.diameter_min);
   settings.material.friction = 0;
   settings.material.damping_ratio = 0;
-  Simulation simulation(std::move(particles), state, settings, 0.0, 0, false);
+  Simulation simulation(std::move(particles), state, settings, 0.0, 0, false,
+                        aniso::mpi::Comm(MPI_COMM_SELF));
   const double start = total_energy(simulation);
   CollisionResult result;
   bool touched = false;

@@ -81,7 +81,7 @@ TEST(Failures, HeadOnImpactStopsWithOverlapError) {
   state.lengths = lengths;
   state.reference_lengths = lengths;
   SimulationSettings settings = settings_from_config(config, config.particles.diameter_min);
-  Simulation simulation(std::move(particles), state, settings, 0.0, 0, false);
+  Simulation simulation(std::move(particles), state, settings, 0.0, 0, false, mpi::Comm(MPI_COMM_SELF));
   try {
     for (int k = 0; k < 1000; ++k)
       simulation.step();
@@ -134,7 +134,7 @@ TEST(Failures, ExplosionLeavesEarlierCheckpointIntact) {
     ASSERT_EQ(checkpoint.particles.position[k], written_positions[k]) << "particle " << k;
   }
   // ...and it restarts.
-  const Simulation restarted = from_checkpoint(checkpoint, path);
+  const Simulation restarted = from_checkpoint(checkpoint, path, mpi::Comm(MPI_COMM_SELF));
   EXPECT_EQ(restarted.step_count(), written_step);
 }
 

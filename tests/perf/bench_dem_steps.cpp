@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   std::vector<double> seconds;
   double contacts = 0;
   for (int repeat = 0; repeat < n_repeats; ++repeat) {
-    dem::Simulation simulation = dem::from_checkpoint(checkpoint, path);
+    dem::Simulation simulation = dem::from_checkpoint(checkpoint, path, mpi::Comm::world());
     dem::start_loading(simulation, config);
     const auto start = std::chrono::steady_clock::now();
     for (long step = 0; step < n_steps; ++step)
