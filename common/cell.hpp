@@ -34,6 +34,32 @@ public:
     return fractional.cwiseProduct(lengths_);
   }
 
+  /// Minimum image of the separation of two positions that are both inside the cell
+  /// (|d_a| < L_a): one comparison per axis and no rounding, for inner loops.
+  [[nodiscard]] static Vec3 minimum_image_of_wrapped(Vec3 d, const Vec3& lengths) {
+    for (int a = 0; a < 3; ++a) {
+      if (d[a] > 0.5 * lengths[a]) {
+        d[a] -= lengths[a];
+      } else if (d[a] < -0.5 * lengths[a]) {
+        d[a] += lengths[a];
+      }
+    }
+    return d;
+  }
+  /// Position mapped back into [0, L_i) when it has left the cell by less than one length
+  /// (a time step); falls back to wrap() otherwise.
+  [[nodiscard]] Vec3 wrap_nearby(Vec3 position) const {
+    for (int a = 0; a < 3; ++a) {
+      if (position[a] >= lengths_[a]) {
+        position[a] -= lengths_[a];
+      } else if (position[a] < 0.0) {
+        position[a] += lengths_[a];
+      }
+      if (!(position[a] >= 0.0 && position[a] < lengths_[a])) return wrap(position);
+    }
+    return position;
+  }
+
   /// Sets new lengths (all positive); affine remapping of particles is the caller's job.
   void set_lengths(const Vec3& lengths);
 

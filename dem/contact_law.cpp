@@ -67,7 +67,17 @@ double hertz_contact_duration(double contact_modulus, double effective_radius, d
   return kHertzDurationFactor * std::pow(m2 / (effective_radius * e2 * approach_speed), 0.2);
 }
 
+ContactConstants contact_constants(const ContactMaterial& material) {
+  return {contact_modulus(material), material.shear_modulus / (2.0 * (2.0 - material.poisson_ratio)),
+          material.friction, material.damping_ratio};
+}
+
 ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProperties& pair,
+                                 const ContactKinematics& kinematics, ContactHistory& history) {
+  return hertz_mindlin_force(contact_constants(material), pair, kinematics, history);
+}
+
+ContactForce hertz_mindlin_force(const ContactConstants& constants, const PairProperties& pair,
                                  const ContactKinematics& kinematics, ContactHistory& history) {
   ContactForce result;
   const double overlap = kinematics.overlap;
@@ -80,8 +90,8 @@ ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProp
 
   // One square root gives the contact radius a = sqrt(R* delta); then
   // F_n = (4/3) E* a delta, k_n = 2 E* a, k_t = 8 G* a.
-  const double e_star = contact_modulus(material);
-  const double g_star = material.shear_modulus / (2.0 * (2.0 - material.poisson_ratio));
+  const double e_star = constants.e_star;
+  const double g_star = constants.g_star;
   const double a = std::sqrt(pair.effective_radius * overlap);
   const double f_n = (4.0 / 3.0) * e_star * a * overlap;
   const double k_n = 2.0 * e_star * a;
@@ -110,7 +120,7 @@ ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProp
   f_spring += (k_t * kinematics.time_step) * v_t;
 
   // Coulomb limit |F_t| <= mu F_n: beyond it the force is scaled back (sliding).
-  const double f_max = material.friction * f_n;
+  const double f_max = constants.friction * f_n;
   const double f_norm2 = f_spring.squaredNorm();
   if (f_norm2 > f_max * f_max) {
     f_spring *= f_max / std::sqrt(f_norm2);
@@ -125,7 +135,7 @@ ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProp
   // i along tangentially. The tangential part is added after the Coulomb
   // cap and is not limited by it.
   double f_normal_total = f_n; // magnitude of the repulsion, force on i is -f_normal_total n
-  const double beta = material.damping_ratio;
+  const double beta = constants.damping_ratio;
   if (beta > 0) {
     const double m = pair.effective_mass;
     f_normal_total -= 2.0 * beta * std::sqrt(m * k_n) * v_n;

@@ -58,6 +58,19 @@ double rayleigh_time_step(double radius, double density, const ContactMaterial& 
 double hertz_contact_duration(double contact_modulus, double effective_radius, double effective_mass,
                               double approach_speed);
 
+/// Material constants derived once per force pass instead of once per contact.
+struct ContactConstants {
+  double e_star = 0;   ///< E* = G / (1 - nu) [Pa]
+  double g_star = 0;   ///< G* = G / (2 (2 - nu)) [Pa]
+  double friction = 0; ///< mu
+  double damping_ratio = 0;
+};
+ContactConstants contact_constants(const ContactMaterial& material);
+
+/// The same force with the constants precomputed (the inner loop's form).
+ContactForce hertz_mindlin_force(const ContactConstants& constants, const PairProperties& pair,
+                                 const ContactKinematics& kinematics, ContactHistory& history);
+
 /// Force of one time step; rotates the tangential force into the current tangent plane,
 /// adds this step's tangential motion and caps it at the Coulomb limit.
 ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProperties& pair,

@@ -1,39 +1,46 @@
 #include "dem/forces.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace aniso::dem {
 
-std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
-                                    const ContactMaterial& material, double time_step,
-                                    NeighborList& neighbors) {
+ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
+                                 const ContactMaterial& material, double time_step, NeighborList& neighbors) {
   for (std::size_t k = 0; k < particles.size(); ++k) {
     particles.force[k].setZero();
     particles.torque[k].setZero();
   }
   const Vec3& lengths = cell.lengths();
-  const Vec3 inverse_lengths = lengths.cwiseInverse();
   const auto& pairs = neighbors.pairs();
   auto& history = neighbors.history();
   auto& records = neighbors.records();
-  std::int64_t n_touching = 0;
+  const auto& properties = neighbors.properties();
+  const ContactConstants constants = contact_constants(material);
+  ForcePass pass;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const std::uint32_t i = pairs[k].i, j = pairs[k].j;
-    Vec3 d = particles.position[j] - particles.position[i];
-    for (int a = 0; a < 3; ++a)
-      d[a] -= lengths[a] * std::nearbyint(d[a] * inverse_lengths[a]);
+    const Vec3 d =
+        PeriodicCell::minimum_image_of_wrapped(particles.position[j] - particles.position[i], lengths);
     const double radius_sum = particles.radius[i] + particles.radius[j];
     const double distance_squared = d.squaredNorm();
     ContactRecord& record = records[k];
     if (distance_squared >= radius_sum * radius_sum) {
-      history[k] = ContactHistory{};
-      record = ContactRecord{};
+      if (record.overlap > 0 || history[k].sliding || !history[k].tangential_force.isZero(0.0)) {
+        history[k] = ContactHistory{}; // the contact has just opened
+        record = ContactRecord{};
+      }
       continue;
     }
-    ++n_touching;
+    ++pass.n_touching;
     const double distance = std::sqrt(distance_squared);
-    const Vec3 normal = d / distance;
+    const Vec3 normal = d * (1.0 / distance);
     const double overlap = radius_sum - distance;
+    const double smaller_radius = std::min(particles.radius[i], particles.radius[j]);
+    if (!(overlap <= pass.worst_overlap * smaller_radius)) { // also catches NaN
+      pass.worst_overlap = overlap / smaller_radius;
+      pass.worst_pair = static_cast<std::int64_t>(k);
+    }
     // Lever arms from each centre to the contact point, which sits mid-way through the overlap.
     const double arm_i = particles.radius[i] - 0.5 * overlap;
     const double arm_j = particles.radius[j] - 0.5 * overlap;
@@ -44,10 +51,7 @@ std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& ce
         particles.velocity[j] - particles.velocity[i] + strain_rate.cwiseProduct(d) -
         (arm_j * particles.angular_velocity[j] + arm_i * particles.angular_velocity[i]).cross(normal);
     kinematics.time_step = time_step;
-    PairProperties pair;
-    pair.effective_radius = particles.radius[i] * particles.radius[j] / radius_sum;
-    pair.effective_mass = particles.mass[i] * particles.mass[j] / (particles.mass[i] + particles.mass[j]);
-    const ContactForce result = hertz_mindlin_force(material, pair, kinematics, history[k]);
+    const ContactForce result = hertz_mindlin_force(constants, properties[k], kinematics, history[k]);
     const Vec3 moment_direction = normal.cross(result.force_on_i);
     particles.force[i] += result.force_on_i;
     particles.force[j] -= result.force_on_i;
@@ -60,7 +64,7 @@ std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& ce
     record.normal_force = result.normal_force;
     record.tangential_stiffness = result.tangential_stiffness;
   }
-  return n_touching;
+  return pass;
 }
 
 } // namespace aniso::dem

@@ -10,11 +10,15 @@
 
 namespace aniso::dem {
 
+struct ForcePass {
+  std::int64_t n_touching = 0;
+  double worst_overlap = 0;     ///< largest overlap / smaller radius (NaN if an overlap was NaN)
+  std::int64_t worst_pair = -1; ///< index into NeighborList::pairs() of that pair
+};
+
 /// Zeroes forces and torques, then adds every contact's. `strain_rate` is the
 /// cell's diagonal rate, which adds the affine part to relative velocities.
-/// Returns the number of touching pairs.
-std::int64_t compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
-                                    const ContactMaterial& material, double time_step,
-                                    NeighborList& neighbors);
+ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
+                                 const ContactMaterial& material, double time_step, NeighborList& neighbors);
 
 } // namespace aniso::dem

@@ -23,7 +23,7 @@ void drift(Particles& particles, PeriodicCell& cell, const Vec3& strain_rate, do
   cell.set_lengths(new_lengths);
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     const Vec3 moved = (particles.position[k] + dt * particles.velocity[k]).cwiseProduct(scale);
-    particles.position[k] = cell.wrap(moved);
+    particles.position[k] = cell.wrap_nearby(moved);
   }
 }
 

@@ -10,11 +10,9 @@
 namespace aniso::dem {
 namespace {
 
+// Both positions are inside the cell, so one comparison per axis gives the minimum image.
 Vec3 separation(const Vec3& from, const Vec3& to, const Vec3& lengths) {
-  Vec3 d = to - from;
-  for (int a = 0; a < 3; ++a)
-    d[a] -= lengths[a] * std::nearbyint(d[a] / lengths[a]);
-  return d;
+  return PeriodicCell::minimum_image_of_wrapped(to - from, lengths);
 }
 
 bool pair_less(const Particles& particles, const Pair& a, const Pair& b) {
@@ -130,6 +128,14 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell,
   pairs_ = std::move(fresh);
   history_ = std::move(fresh_history);
   records_.assign(pairs_.size(), ContactRecord{});
+  properties_.resize(pairs_.size());
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::uint32_t i = pairs_[k].i, j = pairs_[k].j;
+    properties_[k].effective_radius =
+        particles.radius[i] * particles.radius[j] / (particles.radius[i] + particles.radius[j]);
+    properties_[k].effective_mass =
+        particles.mass[i] * particles.mass[j] / (particles.mass[i] + particles.mass[j]);
+  }
   position_at_build_.assign(particles.position.begin(),
                             particles.position.begin() + static_cast<std::ptrdiff_t>(n_owned));
   lengths_at_build_ = lengths;

@@ -54,6 +54,8 @@ public:
   [[nodiscard]] const std::vector<Pair>& pairs() const { return pairs_; }
   [[nodiscard]] std::vector<ContactHistory>& history() { return history_; }
   [[nodiscard]] const std::vector<ContactHistory>& history() const { return history_; }
+  /// R* and m* of each pair, fixed while the pair exists.
+  [[nodiscard]] const std::vector<PairProperties>& properties() const { return properties_; }
   [[nodiscard]] std::vector<ContactRecord>& records() { return records_; }
   [[nodiscard]] const std::vector<ContactRecord>& records() const { return records_; }
   [[nodiscard]] double skin() const { return skin_; }
@@ -67,6 +69,7 @@ private:
   std::vector<Pair> pairs_;
   std::vector<ContactHistory> history_;
   std::vector<ContactRecord> records_;
+  std::vector<PairProperties> properties_;
   std::vector<std::array<std::uint64_t, 2>>
       pair_ids_; ///< ids of pairs_, for carrying history across migration
   double global_max_radius_ = 0;

@@ -67,27 +67,19 @@ void Simulation::rebuild_decomposition() {
 }
 
 void Simulation::compute_forces() {
-  compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material, settings_.time_step,
-                         neighbors_);
+  const ForcePass pass = compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material,
+                                                settings_.time_step, neighbors_);
   // Explosion guard: an overlap this large means the step or the loading rate is far too large.
   // Every rank must stop together, so the verdict is shared before anyone throws.
-  const auto& records = neighbors_.records();
-  const auto& pairs = neighbors_.pairs();
-  std::string explosion;
-  for (std::size_t k = 0; k < records.size() && explosion.empty(); ++k) {
-    const double smaller = std::min(particles_.radius[pairs[k].i], particles_.radius[pairs[k].j]);
-    if (records[k].overlap > settings_.explosion_overlap * smaller || std::isnan(records[k].overlap)) {
-      explosion =
-          fmt::format("step {}: overlap of particles {} and {} is {:.3g} of the smaller radius (limit {}): "
-                      "the run exploded; lower the time step fraction or the loading rate",
-                      step_ + 1, particles_.id[pairs[k].i], particles_.id[pairs[k].j],
-                      records[k].overlap / smaller, settings_.explosion_overlap);
-    }
-  }
-  const bool any_explosion = comm().size() > 1 ? comm().any(!explosion.empty()) : !explosion.empty();
-  if (any_explosion) {
+  const bool exploded = !(pass.worst_overlap <= settings_.explosion_overlap);
+  if (comm().size() > 1 ? comm().any(exploded) : exploded) {
+    if (!exploded) throw NumericalError(fmt::format("step {}: the run exploded on another rank", step_ + 1));
+    const Pair& pair = neighbors_.pairs()[static_cast<std::size_t>(pass.worst_pair)];
     throw NumericalError(
-        explosion.empty() ? fmt::format("step {}: the run exploded on another rank", step_ + 1) : explosion);
+        fmt::format("step {}: overlap of particles {} and {} is {:.3g} of the smaller radius "
+                    "(limit {}): the run exploded; lower the time step fraction or the loading rate",
+                    step_ + 1, particles_.id[pair.i], particles_.id[pair.j], pass.worst_overlap,
+                    settings_.explosion_overlap));
   }
 }
 
