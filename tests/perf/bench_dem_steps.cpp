@@ -2,7 +2,7 @@
 // from a checkpoint, median of several repetitions, each from the same restored
 // state. Never asserts a time; docs/performance.md records the results.
 //
-// usage: bench_dem_steps CHECKPOINT.h5 [STEPS=2000] [REPEATS=5]
+// usage: [mpiexec -n N] bench_dem_steps CHECKPOINT.h5 [STEPS=2000] [REPEATS=5]
 #include "common/h5/checkpoint.hpp"
 #include "dem/config.hpp"
 #include "dem/io.hpp"
@@ -41,9 +41,10 @@ int main(int argc, char** argv) {
   std::sort(seconds.begin(), seconds.end());
   const double median = seconds[seconds.size() / 2];
   const double n_particles = static_cast<double>(checkpoint.particles.size());
-  std::printf("particles %.0f contacts %.0f steps %ld repeats %d median %.4f s (min %.4f max %.4f): "
+  if (!mpi::Comm::world().is_root()) return 0;
+  std::printf("ranks %d particles %.0f contacts %.0f steps %ld repeats %d median %.4f s (min %.4f max %.4f): "
               "%.4g particle-steps/s, %.4g contact-steps/s\n",
-              n_particles, contacts, n_steps, n_repeats, median, seconds.front(), seconds.back(),
+              mpi::Comm::world().size(), n_particles, contacts, n_steps, n_repeats, median, seconds.front(), seconds.back(),
               n_particles * static_cast<double>(n_steps) / median,
               contacts * static_cast<double>(n_steps) / median);
   return 0;
