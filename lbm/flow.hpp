@@ -1,0 +1,55 @@
+#pragma once
+// Runs one steady Stokes flow to convergence on a rank's topology: the time
+// loop, the convergence criterion and the divergence checks.
+//
+// Convergence: every `check_interval` steps the mean momentum J (superficial,
+// over all voxels) is reduced exactly; the run has converged when
+// |J(t) - J(t - check_interval)| <= tolerance |J(t)|.
+// Divergence: non-finite populations, a Mach number max|u|/c_s above
+// max_mach, or a drift of the mean density above mass_drift stop the run
+// with NumericalError naming the cause and the remedy. Reaching max_steps
+// first is a ConvergenceError. In neither case is a result returned.
+
+#include "common/log.hpp"
+#include "common/mpi.hpp"
+#include "common/tensor.hpp"
+#include "lbm/topology.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aniso::lbm {
+
+enum class Precision { float32, float64 };
+
+struct FlowSettings {
+  double tau = 1.0;          ///< relaxation time of the symmetric moments (viscosity (tau - 1/2) / 3)
+  double magic = 3.0 / 16.0; ///< TRT magic parameter Lambda
+  Vec3 force = Vec3::Zero(); ///< body force density on the fluid [lattice units]
+  Precision precision = Precision::float64;
+  double tolerance = 1e-6;           ///< relative change of J over one check interval
+  std::int64_t check_interval = 100; ///< steps between checks
+  std::int64_t max_steps = 200000;
+  double max_mach = 0.1;
+  double mass_drift = 1e-6;   ///< limit on |mean delta rho| drift
+  bool keep_velocity = false; ///< gather the velocity field on rank 0 at the end
+  std::string label = "flow"; ///< names the run in messages
+};
+
+struct FlowResult {
+  Vec3 mean_momentum = Vec3::Zero();     ///< sum of j over fluid nodes / all voxels [lattice]
+  Vec3 pressure_gradient = Vec3::Zero(); ///< mean dp/dx along wall-bounded axes (0 along periodic ones)
+  std::int64_t steps = 0;
+  double relative_change = 0;
+  double max_mach = 0;
+  double mass_drift = 0;
+  double seconds = 0;
+  std::vector<double> velocity; ///< rank 0, keep_velocity only: u per voxel, 3 values, x1 fastest, 0 in solid
+};
+
+/// Runs to convergence (collective). Throws NumericalError / ConvergenceError as described above.
+FlowResult run_flow(const Topology& topology, const FlowSettings& settings, const mpi::Comm& comm,
+                    const Logger& logger);
+
+} // namespace aniso::lbm

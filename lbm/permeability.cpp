@@ -1,0 +1,135 @@
+#include "lbm/permeability.hpp"
+
+#include "common/error.hpp"
+#include "lbm/partition.hpp"
+#include "lbm/petsc_log.hpp"
+#include "lbm/topology.hpp"
+#include "lbm/trt.hpp"
+
+#include <Eigen/QR>
+#include <fmt/format.h>
+
+namespace aniso::lbm {
+namespace {
+
+Index3 shape_of(const h5::VoxelImage& image) {
+  Index3 shape{};
+  for (std::size_t a = 0; a < 3; ++a)
+    shape[a] = static_cast<int>(image.shape[a]);
+  return shape;
+}
+
+} // namespace
+
+FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settings, int axis, FaceKind walls,
+                 const mpi::Comm& comm, const Logger& logger) {
+  const LogEvents events = lbm_log_events();
+  const Faces faces = walls == FaceKind::periodic ? all_periodic : walled_except(axis, walls);
+  Topology topology;
+  {
+    ScopedStage stage(events, events.setup);
+    const Partition partition = make_partition(shape_of(image), faces, comm);
+    topology = build_topology(image.phase, partition, faces, comm);
+  }
+  FlowSettings flow = settings.flow;
+  flow.force = Vec3::Zero();
+  flow.force[axis] = settings.body_force;
+  flow.label = fmt::format("flow along x{} ({} side faces)", axis + 1, to_string(walls));
+  FlowRun run{axis, walls, run_flow(topology, flow, comm, logger)};
+  logger->info(
+      "{}: converged in {} steps ({:.1f} s, {:.3g} MFLUPS), <j> = ({:.4e}, {:.4e}, {:.4e}), Mach {:.2e}",
+      flow.label, run.result.steps, run.result.seconds,
+      static_cast<double>(run.result.steps) * static_cast<double>(topology.n_fluid_global) /
+          run.result.seconds * 1e-6,
+      run.result.mean_momentum[0], run.result.mean_momentum[1], run.result.mean_momentum[2],
+      run.result.max_mach);
+  return run;
+}
+
+namespace {
+
+/// The driving gradient of a run: the body force minus the pressure gradient that walls built up.
+Vec3 driving(const FlowRun& run, double body_force) {
+  Vec3 g = -run.result.pressure_gradient;
+  g[run.axis] += body_force;
+  return g;
+}
+
+} // namespace
+
+std::string to_string(Method method) {
+  return method == Method::periodic_body_force ? "periodic_body_force" : "paper_walls";
+}
+
+Mat3 solve_off_diagonal(const Vec3& diagonal, const std::vector<Vec3>& driving, const std::vector<Vec3>& flux,
+                        double& relative_residual) {
+  // Per run, eq. (kijsolver): rows [G2 G3 0; G1 0 G3; 0 G1 G2] (k12, k13, k23)^T = nu J - diag(K) G.
+  const auto n_rows = static_cast<Eigen::Index>(3 * driving.size());
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n_rows, 3);
+  Eigen::VectorXd b(n_rows);
+  for (std::size_t r = 0; r < driving.size(); ++r) {
+    const Vec3& g = driving[r];
+    const auto row = static_cast<Eigen::Index>(3 * r);
+    a.row(row) << g[1], g[2], 0;
+    a.row(row + 1) << g[0], 0, g[2];
+    a.row(row + 2) << 0, g[0], g[1];
+    for (Eigen::Index i = 0; i < 3; ++i)
+      b[row + i] = flux[r][i] - diagonal[i] * g[i];
+  }
+  const Eigen::Vector3d x = a.colPivHouseholderQr().solve(b);
+  Eigen::VectorXd rhs_scale(n_rows);
+  for (std::size_t r = 0; r < driving.size(); ++r)
+    for (Eigen::Index i = 0; i < 3; ++i)
+      rhs_scale[static_cast<Eigen::Index>(3 * r) + i] = flux[r][i];
+  relative_residual = (a * x - b).norm() / std::max(rhs_scale.norm(), 1e-300);
+  Mat3 k = diagonal.asDiagonal();
+  k(0, 1) = k(1, 0) = x[0];
+  k(0, 2) = k(2, 0) = x[1];
+  k(1, 2) = k(2, 1) = x[2];
+  return k;
+}
+
+PermeabilityResult compute_permeability(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                                        const mpi::Comm& comm, const Logger& logger) {
+  require_input(settings.body_force > 0, "lbm.body_force must be positive");
+  PermeabilityResult result;
+  result.method = settings.method;
+  const double nu = make_trt_rates(settings.flow.tau, settings.flow.magic).viscosity();
+  std::size_t solid = 0;
+  for (std::uint8_t v : image.phase)
+    solid += v;
+  result.fluid_voxels = static_cast<std::int64_t>(image.size() - solid);
+  result.porosity = static_cast<double>(result.fluid_voxels) / static_cast<double>(image.size());
+  const auto keep = [&](FlowRun& run) {
+    if (settings.flow.keep_velocity) result.velocity.push_back(std::move(run.result.velocity));
+    run.result.velocity.clear();
+    result.runs.push_back(std::move(run));
+  };
+  if (settings.method == Method::periodic_body_force) {
+    for (int axis = 0; axis < 3; ++axis) {
+      FlowRun run = run_axis(image, settings, axis, FaceKind::periodic, comm, logger);
+      result.k_lattice.col(axis) = nu * run.result.mean_momentum / settings.body_force;
+      keep(run);
+    }
+    result.symmetry_error =
+        (result.k_lattice - result.k_lattice.transpose()).norm() / std::max(result.k_lattice.norm(), 1e-300);
+    return result;
+  }
+  Vec3 diagonal = Vec3::Zero();
+  for (int axis = 0; axis < 3; ++axis) {
+    FlowRun run = run_axis(image, settings, axis, FaceKind::no_slip, comm, logger);
+    diagonal[axis] = nu * run.result.mean_momentum[axis] / driving(run, settings.body_force)[axis];
+    keep(run);
+  }
+  std::vector<Vec3> drive, flux;
+  for (int axis = 0; axis < 3; ++axis) {
+    FlowRun run = run_axis(image, settings, axis, FaceKind::free_slip, comm, logger);
+    drive.push_back(driving(run, settings.body_force));
+    flux.push_back(nu * run.result.mean_momentum);
+    keep(run);
+  }
+  result.k_lattice = solve_off_diagonal(diagonal, drive, flux, result.inverse_residual);
+  return result;
+}
+
+} // namespace aniso::lbm

@@ -1,0 +1,68 @@
+#pragma once
+// The effective permeability tensor of a voxel image (paper section 6,
+// eq. (permeability)): k_ij = -mu <v_i> / p_,j, i.e. in lattice units with a
+// body force density F standing for the pressure gradient, k_ij = nu <j_i> / F_j
+// with <j> the superficial momentum (mean over all voxels, solid included).
+//
+// Two methods:
+//  - periodic_body_force: fully periodic image, force along x_j gives column j;
+//    three runs give the whole tensor, whose asymmetry measures the error.
+//  - paper_walls (the paper's procedure): along each axis, a driving gradient
+//    with no-slip walls on the four side faces gives k_ii; then free-slip side
+//    walls, on which transverse pressure gradients build up, and the inverse
+//    problem of eqs. (kij1)-(kijsolver) give k_12, k_13, k_23. The driving
+//    pressure drop is applied as the equivalent body force with the flow axis
+//    periodic (identical for incompressible Stokes flow, and free of inlet
+//    artefacts on a periodic image).
+
+#include "common/h5/image.hpp"
+#include "common/log.hpp"
+#include "common/mpi.hpp"
+#include "common/tensor.hpp"
+#include "lbm/flow.hpp"
+
+#include <string>
+#include <vector>
+
+namespace aniso::lbm {
+
+enum class Method { periodic_body_force, paper_walls };
+std::string to_string(Method method);
+
+struct PermeabilitySettings {
+  Method method = Method::periodic_body_force;
+  FlowSettings flow;        ///< force is set per run from body_force
+  double body_force = 1e-5; ///< magnitude of the driving force density [lattice]
+};
+
+struct FlowRun {
+  int axis = 0; ///< direction of the driving force
+  FaceKind walls = FaceKind::periodic;
+  FlowResult result;
+};
+
+struct PermeabilityResult {
+  Method method = Method::periodic_body_force;
+  Mat3 k_lattice = Mat3::Zero(); ///< [voxel^2]
+  double symmetry_error = 0;     ///< periodic: |K - K^T| / |K| (Frobenius)
+  double inverse_residual = 0;   ///< paper: relative residual of the least-squares inverse problem
+  double porosity = 0;
+  std::int64_t fluid_voxels = 0;
+  std::vector<FlowRun> runs;
+  std::vector<std::vector<double>> velocity; ///< rank 0, keep_velocity only: one field per run
+};
+
+/// Runs the method's flows on the image (collective; identical image on every rank; PETSc initialized).
+PermeabilityResult compute_permeability(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                                        const mpi::Comm& comm, const Logger& logger);
+
+/// One flow with the force along `axis` and `walls` on the side faces (periodic: none).
+FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settings, int axis, FaceKind walls,
+                 const mpi::Comm& comm, const Logger& logger);
+
+/// Solves eq. (kijsolver) in the least-squares sense over several runs: nu J = K G with the diagonal of K
+/// known, for the off-diagonal (k12, k13, k23). Returns K and writes the relative residual.
+Mat3 solve_off_diagonal(const Vec3& diagonal, const std::vector<Vec3>& driving, const std::vector<Vec3>& flux,
+                        double& relative_residual);
+
+} // namespace aniso::lbm
