@@ -1,14 +1,9 @@
-// aniso-voxel: digitize a checkpoint and measure the void space by ball, spar and disk openings (section 3).
+// aniso-voxel: digitize a checkpoint and measure the void space by ball, spar and disk openings
+// (Kuhn, Sun & Wang 2015, section 3). Writes <output_dir>/image_<stem>.h5 (+ .xmf) and
+// <output_dir>/voids_<stem>.h5 / .csv; docs/methods/voxel.md.
 #include "common/cli.hpp"
-#include "common/stage_stub.hpp"
+#include "voxel/stage.hpp"
 
 int main(int argc, char** argv) {
-  return aniso::cli::run(
-      argc, argv, "aniso-voxel", [](int argc_, char** argv_, const aniso::mpi::Comm& comm) {
-        return aniso::cli::run_pending_stage(
-            argc_, argv_, comm,
-            {"aniso-voxel",
-             "digitize a checkpoint and measure the void space by ball, spar and disk openings (section 3)",
-             "voxel", aniso::cli::InputKind::checkpoint, 7});
-      });
+  return aniso::cli::run(argc, argv, "aniso-voxel", aniso::voxel::run_voxel_stage);
 }
