@@ -1,0 +1,51 @@
+// The contact stress, coordination and void ratio of a checkpoint written by the DEM equal
+// what the DEM itself measures at that state (dem/measures.hpp), for a small assembly built
+// with the DEM's public API (tests/dem/assembly_fixture.hpp) and loaded for a few steps.
+#include "dem/io.hpp"
+#include "dem/load.hpp"
+#include "dem/measures.hpp"
+#include "fabric/measures.hpp"
+
+#include <gtest/gtest.h>
+
+#include "../dem/assembly_fixture.hpp"
+
+namespace aniso::fabric {
+namespace {
+
+TEST(FabricDem, ContactStressAndCoordinationEqualTheDemsOwn) {
+  const mpi::Comm self(MPI_COMM_SELF);
+  dem::DemConfig config = dem::test::small_config(150, 11);
+  dem::Simulation simulation = dem::test::prepared_assembly(config);
+  dem::start_loading(simulation, config);
+  for (int k = 0; k < 500; ++k)
+    simulation.step();
+
+  const dem::test::TemporaryFolder folder("fabric_dem_agreement");
+  const std::string path = folder.file("state.h5");
+  h5::write_checkpoint(path, dem::to_checkpoint(simulation, config.particles.d50, {{1, 2, 3, 4}}),
+                       dem::test::test_provenance(), self);
+  const h5::Checkpoint checkpoint = h5::read_checkpoint(path, self);
+  const FabricMeasures m = measure_fabric(checkpoint, path, FabricConfig{}, self);
+
+  const dem::StateMeasures dem_state =
+      dem::measure_state(simulation.particles(), simulation.cell(), simulation.neighbors(),
+                         simulation.solid_volume(), simulation.n_particles(), self);
+  ASSERT_GT(m.n_contacts, 100);
+  EXPECT_EQ(m.n_contacts, dem_state.n_contacts);
+  // The DEM's stress includes the kinetic term; the branch vectors differ only by round-off
+  // (centre difference + image shift here, distance * normal there).
+  const Mat3 total = m.stress_contact + m.stress_kinetic;
+  EXPECT_LT((total - dem_state.stress).cwiseAbs().maxCoeff(), 1e-12 * dem_state.stress.cwiseAbs().maxCoeff())
+      << total << "\nDEM\n"
+      << dem_state.stress;
+  EXPECT_LT(m.stress_kinetic.norm(), 1e-3 * m.stress_contact.norm());
+  EXPECT_NEAR(m.mean_stress, mean_stress_compression_positive(m.stress_contact), 0.0);
+  EXPECT_EQ(m.coordination, dem_state.coordination);
+  EXPECT_EQ(m.coordination_no_rattlers, dem_state.coordination_no_rattlers);
+  EXPECT_EQ(m.n_rattlers, dem_state.n_rattlers);
+  EXPECT_NEAR(m.void_ratio, dem_state.void_ratio, 1e-12 * dem_state.void_ratio);
+}
+
+} // namespace
+} // namespace aniso::fabric
