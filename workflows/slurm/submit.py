@@ -1,0 +1,209 @@
+#!/usr/bin/python3
+"""Submits the aniso campaign to SLURM as jobs with dependencies.
+
+usage: submit.py --config FILE.toml --out RUN_DIR --bin BUILD_DIR [--ranks N]
+                 [--launcher 'srun --mpi=pmix'] [--sbatch-arg=ARG ...] [--dry-run] [--wait]
+
+The jobs are the steps of workflows/Makefile (its `slurm-plan` target lists
+them): prepare -> load -> per checkpoint {probe forks as a 6-task array ->
+probe collect; voxel -> LBM directions as a 3-task array -> LBM collect},
+fabric after load, and the figures and report after everything. Each job runs
+`make <its targets>` (slurm/make-step.sh), so a job's output is exactly what a
+local `make campaign` writes, and resubmitting after a failure or a kill
+submits only the steps whose files are missing or out of date.
+
+Stages that are not built yet are left out with one line each on stderr.
+MPI steps get --ntasks=N (--ranks, default 1), serial ones 1 task. Cluster
+settings (partition, account, time limit...) go through --sbatch-arg or
+sbatch's own environment variables (SBATCH_PARTITION, SBATCH_ACCOUNT,
+SBATCH_TIMELIMIT, ...). Logs: RUN_DIR/slurm/<step>-<job>[_<task>].log; the job
+ids: RUN_DIR/slurm/jobs.tsv. --wait blocks until every job has ended and
+exits 0 only if all completed.
+"""
+import argparse
+import os
+import shlex
+import subprocess
+import sys
+import time
+
+WORKFLOWS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+STEP_SCRIPT = os.path.join(WORKFLOWS, "slurm", "make-step.sh")
+ENDED_OK = {"COMPLETED"}
+STILL_RUNNING = {"PENDING", "RUNNING", "CONFIGURING", "COMPLETING", "REQUEUED", "RESIZING", "SUSPENDED",
+                 "STAGE_OUT", "SIGNALING"}
+
+
+def say(message):
+    print(f"submit: {message}", file=sys.stderr, flush=True)
+
+
+def fail(message):
+    say(f"error: {message}")
+    sys.exit(1)
+
+
+class Step:
+    def __init__(self, line):
+        fields = line.split()
+        if len(fields) < 5 or fields[2] not in ("mpi", "serial"):
+            fail(f"bad slurm-plan line from the Makefile: '{line}'")
+        self.name, self.mpi = fields[0], fields[2] == "mpi"
+        self.tasks = int(fields[1])
+        self.after = [] if fields[3] == "-" else fields[3].split(",")
+        self.targets = fields[4:]
+        self.job_id = None
+
+    def expanded_targets(self):
+        """The files of every array task."""
+        return [t.replace("{task}", str(k)) for t in self.targets for k in range(self.tasks)] \
+            if self.tasks > 1 else list(self.targets)
+
+
+def campaign_facts(args):
+    def ask(*words):
+        result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "campaign.py"), *words],
+                                stdout=subprocess.PIPE, text=True)  # its skip lines go to our stderr
+        if result.returncode != 0:
+            fail(f"campaign.py {' '.join(words)} failed")
+        return result.stdout.strip()
+
+    return {"CHECKPOINTS": ask("checkpoints", args.config, args.bin), "STAGES": ask("stages", args.bin)}
+
+
+def make_variables(args, facts):
+    # Passing the checkpoint and stage lists keeps every job on the plan submitted here.
+    return [f"CONFIG={args.config}", f"OUT={args.out}", f"BIN={args.bin}"] + [f"{k}={v}" for k, v in facts.items()]
+
+
+def read_plan(variables):
+    result = subprocess.run(["make", "-s", "-C", WORKFLOWS, "slurm-plan", *variables], capture_output=True,
+                            text=True)
+    if result.returncode != 0:
+        fail(f"make slurm-plan failed:\n{result.stderr}")
+    steps = [Step(line) for line in result.stdout.splitlines() if line.strip()]
+    names = {s.name for s in steps}
+    for step in steps:
+        for name in step.after:
+            if name != "*" and name not in names:
+                fail(f"step {step.name} waits for unknown step {name}")
+    return steps
+
+
+def up_to_date(step, variables):
+    return subprocess.run(["make", "-q", "-C", WORKFLOWS, *variables, *step.expanded_targets()],
+                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode == 0
+
+
+def upstream(step, earlier):
+    return earlier if "*" in step.after else [s for s in earlier if s.name in step.after]
+
+
+def sbatch_command(step, waits_for, args, variables, log_dir):
+    log = os.path.join(log_dir, f"{step.name}-%A_%a.log" if step.tasks > 1 else f"{step.name}-%j.log")
+    command = ["sbatch", "--parsable", f"--job-name=aniso-{step.name}", f"--output={log}",
+               f"--ntasks={args.ranks if step.mpi else 1}"]
+    if step.tasks > 1:
+        command.append(f"--array=0-{step.tasks - 1}")
+    job_ids = [s.job_id for s in waits_for if s.job_id]
+    if job_ids:
+        # --kill-on-invalid-dep: a failed upstream job cancels this one instead of leaving it pending
+        command += ["--dependency=afterok:" + ":".join(job_ids), "--kill-on-invalid-dep=yes"]
+    command += args.sbatch_arg
+    keep = [f"--assume-old={path}" for s in waits_for for path in s.expanded_targets()]
+    return command + [STEP_SCRIPT, WORKFLOWS, *variables, *keep, *step.targets]
+
+
+def submit(steps, args, variables):
+    log_dir = os.path.join(args.out, "slurm")
+    os.makedirs(log_dir, exist_ok=True)
+    submitted = []
+    for index, step in enumerate(steps):
+        waits_for = upstream(step, steps[:index])
+        if not any(s.job_id for s in waits_for) and up_to_date(step, variables):
+            say(f"{step.name}: up to date, not submitted")
+            continue
+        command = sbatch_command(step, waits_for, args, variables, log_dir)
+        if args.dry_run:
+            print(shlex.join(command))
+            step.job_id = f"<{step.name}>"
+            continue
+        env = dict(os.environ, ANISO_SLURM_LAUNCHER=args.launcher)
+        result = subprocess.run(command, capture_output=True, text=True, env=env)
+        if result.returncode != 0:
+            fail(f"sbatch refused step {step.name}: {result.stderr.strip()}")
+        step.job_id = result.stdout.strip().split(";")[0]
+        submitted.append(step)
+        say(f"{step.name}: job {step.job_id}" + (f" (array of {step.tasks})" if step.tasks > 1 else "")
+            + (f", after {','.join(s.job_id for s in waits_for if s.job_id)}"
+               if any(s.job_id for s in waits_for) else ""))
+    if not args.dry_run:
+        with open(os.path.join(log_dir, "jobs.tsv"), "a") as table:
+            for step in submitted:
+                table.write(f"{step.name}\t{step.job_id}\t{step.tasks}\t{' '.join(step.targets)}\n")
+    return submitted
+
+
+def job_states(job_id):
+    """{task id: state} of a job or job array; {} once SLURM has forgotten it."""
+    result = subprocess.run(["scontrol", "-o", "show", "job", job_id], capture_output=True, text=True)
+    states = {}
+    for line in result.stdout.splitlines():
+        fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
+        states[fields.get("JobId", "?")] = fields.get("JobState", "UNKNOWN")
+    return states
+
+
+def wait(steps):
+    """Polls every 0.5 s (sbatch --wait polls after 2, 10, 42 s...). True when all completed."""
+    pending = {s.job_id: s for s in steps}
+    ok = True
+    while pending:
+        for job_id, step in list(pending.items()):
+            states = job_states(job_id)
+            if not states:
+                say(f"{step.name}: job {job_id} is no longer known to SLURM")
+                ok = False
+            elif set(states.values()) & STILL_RUNNING:
+                continue
+            elif set(states.values()) <= ENDED_OK:
+                say(f"{step.name}: job {job_id} completed")
+            else:
+                say(f"{step.name}: job {job_id} ended {' '.join(sorted(set(states.values())))}; "
+                    f"see its log in the run's slurm/ folder")
+                ok = False
+            del pending[job_id]
+        if pending:
+            time.sleep(0.5)
+    return ok
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--config", required=True, help="campaign configuration (TOML)")
+    parser.add_argument("--out", required=True, help="run folder (shared by all nodes)")
+    parser.add_argument("--bin", required=True, help="build folder holding <stage>/aniso-<stage>")
+    parser.add_argument("--ranks", type=int, default=1, help="MPI ranks of each MPI step [1]")
+    parser.add_argument("--launcher", default="srun", help="starts the stages inside a job [srun]")
+    parser.add_argument("--sbatch-arg", action="append", default=[], help="extra sbatch option (repeatable)")
+    parser.add_argument("--dry-run", action="store_true", help="print the sbatch commands, submit nothing")
+    parser.add_argument("--wait", action="store_true", help="wait for the jobs; exit 1 if any did not complete")
+    args = parser.parse_args()
+    if args.ranks < 1:
+        fail("--ranks must be at least 1")
+    for name in ("config", "out", "bin"):
+        setattr(args, name, os.path.abspath(getattr(args, name)))
+    if not os.path.isfile(args.config):
+        fail(f"config file {args.config} not found")
+    variables = make_variables(args, campaign_facts(args))
+    steps = submit(read_plan(variables), args, variables)
+    if args.dry_run:
+        return
+    if not steps:
+        say("nothing to submit: the campaign is up to date")
+    elif args.wait and not wait(steps):
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
