@@ -32,6 +32,8 @@ packages=(
   libcli11-dev libtomlplusplus-dev libspdlog-dev libfmt-dev
   # tests and the format check
   libgtest-dev libgmock-dev clang-format
+  # the SLURM path's test: a single-node cluster on localhost (workflows/slurm/local-cluster.sh)
+  slurm-wlm munge libpmix2
   # plots and reports
   python3 python3-numpy python3-h5py python3-scipy python3-matplotlib
 )
