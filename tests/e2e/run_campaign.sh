@@ -45,6 +45,32 @@ for group in /particles /contacts /cell; do
 done
 h5diff "$run/history.h5" "$resumed/history.h5" /history /history || fail "resumed history differs"
 
+# Kill the whole campaign (SIGKILL, as a lost node would) once the load has
+# written its first checkpoint and history, then rerun it: the rerun must
+# continue the load from its newest checkpoint, leave every finished file
+# untouched and end with exactly the uninterrupted run's results.
+killed="$work/killed"
+setsid make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$killed" BIN="$build_dir" \
+  >"$work/killed.log" 2>&1 &
+campaign=$!
+until [ -e "$killed/history.h5" ]; do
+  kill -0 "$campaign" 2>/dev/null || fail "the campaign ended before it could be interrupted: $(tail -3 "$work/killed.log")"
+  sleep 0.02
+done
+kill -KILL -- "-$campaign"
+wait "$campaign" 2>/dev/null || true
+[ ! -e "$killed/load.done" ] || fail "the campaign finished before it was killed; nothing was interrupted"
+finished=$(cd "$killed" && ls prepared.h5 load_*.h5)
+stamps() { (cd "$killed" && stat -c '%n %Y %i' $finished); }
+before=$(stamps)
+make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$killed" BIN="$build_dir" \
+  >"$work/rerun.log" 2>&1 || fail "the rerun after the kill failed: $(tail -5 "$work/rerun.log")"
+grep -q "resuming the interrupted load from $killed/load_00" "$work/rerun.log" \
+  || fail "the rerun did not resume the load from a checkpoint: $(grep -i 'load' "$work/rerun.log" | head -3)"
+! grep -q 'aniso-dem prepare' "$work/rerun.log" || fail "the rerun redid the preparation"
+[ "$before" = "$(stamps)" ] || fail "the rerun rewrote finished files: $before"
+"$source_dir/tests/workflows/compare_runs.sh" "$run" "$killed" || fail "the killed-and-rerun campaign differs"
+
 # A rerun finds everything up to date.
 if make -C "$source_dir/workflows" -q campaign CONFIG=configs/e2e.toml OUT="$run" BIN="$build_dir"; then :; else
   fail "a rerun of the finished campaign would redo work"
