@@ -42,16 +42,25 @@ std::vector<std::uint8_t> digitize_bodies(std::span<const Body> bodies, const Ve
   const Vec3 edge(lengths[0] / static_cast<double>(n0), lengths[1] / static_cast<double>(n1),
                   lengths[2] / static_cast<double>(n2));
   std::vector<std::uint8_t> phase(n0 * n1 * n2, 0);
+  // Shapes are built (and validated: OvoidShape throws on a bad splice angle) before the parallel
+  // loop, which must not throw.
+  std::vector<std::optional<OvoidShape>> ovoids(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].aspect_ratio == 1.0) continue;
+    try {
+      ovoids[b].emplace(bodies[b].diameter, bodies[b].aspect_ratio, splice_angle);
+    } catch (const InputError& error) {
+      throw InputError(fmt::format("particle {}: {}", b, error.what()));
+    }
+  }
   const auto count = static_cast<std::int64_t>(bodies.size());
   // Bodies may overlap (contacts): two threads may both set a voxel to 1, hence atomic stores.
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t b = 0; b < count; ++b) {
     const Body& body = bodies[static_cast<std::size_t>(b)];
     const double radius = 0.5 * body.diameter; // bounds the oblate ovoid too (half-height <= D/2)
-    const bool sphere = body.aspect_ratio == 1.0;
-    const std::optional<OvoidShape> ovoid =
-        sphere ? std::nullopt
-               : std::optional<OvoidShape>(OvoidShape(body.diameter, body.aspect_ratio, splice_angle));
+    const std::optional<OvoidShape>& ovoid = ovoids[static_cast<std::size_t>(b)];
+    const bool sphere = !ovoid.has_value();
     const Mat3 to_body = body.orientation.conjugate().toRotationMatrix();
     std::array<std::pair<std::int64_t, std::int64_t>, 3> range;
     for (int a = 0; a < 3; ++a)
@@ -100,7 +109,12 @@ h5::VoxelImage digitize_checkpoint(const h5::Checkpoint& checkpoint, const std::
   h5::VoxelImage image;
   image.shape = grid_shape(lengths, d50, resolution);
   const std::vector<Body> bodies = bodies_of(checkpoint);
-  image.phase = digitize_bodies(bodies, lengths, image.shape, splice);
+  try {
+    image.phase = digitize_bodies(bodies, lengths, image.shape, splice);
+  } catch (const InputError& error) {
+    throw FileError(fmt::format("{}: {} (ovoid_splice_angle {} rad{})", path, error.what(), splice,
+                                find_parameter(checkpoint, "ovoid_splice_angle") ? "" : ", the default"));
+  }
   const double cells = static_cast<double>(image.shape[0] * image.shape[1] * image.shape[2]);
   image.voxel_size = std::cbrt(lengths.prod() / cells);
   image.origin = Vec3::Zero();
