@@ -48,6 +48,18 @@ std::vector<std::string> column_names() {
   return names;
 }
 
+std::vector<std::string> column_units() {
+  std::vector<std::string> units;
+  const FabricMeasures empty;
+  for (const NamedScalar& s : empty.scalars())
+    units.push_back(s.unit);
+  for (const NamedTensor& t : empty.tensors()) {
+    units.insert(units.end(), 12, t.unit); // nine components, three eigenvalues
+    units.insert(units.end(), 2, "1");     // two anisotropies
+  }
+  return units;
+}
+
 std::vector<double> column_values(const FabricMeasures& measures) {
   std::vector<double> values;
   for (const NamedScalar& s : measures.scalars())

@@ -19,6 +19,7 @@ std::string checkpoint_stem(const std::string& path);
 
 /// CSV header and rows (numbers only, after the source path column), shared with the series table.
 std::vector<std::string> column_names();
+std::vector<std::string> column_units(); ///< the unit of each column, in the same order
 std::vector<double> column_values(const FabricMeasures& measures);
 
 /// Writes the /checkpoints/<stem> group of one checkpoint (serial file).

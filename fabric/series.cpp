@@ -119,7 +119,7 @@ void write_series_results(const std::string& h5_path, std::span<const FabricMeas
                           const mpi::Comm& comm) {
   const std::filesystem::path base = std::filesystem::path(h5_path).replace_extension();
   run_on_root(comm, [&] {
-    const std::vector<std::string> names = column_names();
+    const std::vector<std::string> names = column_names(), units = column_units();
     std::vector<std::vector<double>> rows;
     for (const FabricMeasures& m : series)
       rows.push_back(column_values(m));
@@ -138,7 +138,7 @@ void write_series_results(const std::string& h5_path, std::span<const FabricMeas
         std::vector<double> column;
         for (const auto& row : rows)
           column.push_back(row[c]);
-        table.write_dataset<double>(names[c], column, {column.size()}, "", "column of fabric_series.csv");
+        table.write_dataset<double>(names[c], column, {column.size()}, units[c], "column of the series CSV");
       }
       h5::Group group = file.create_group("correlations");
       for (const Correlation& c : correlations) {
