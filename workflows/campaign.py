@@ -26,7 +26,7 @@ STAGE_INTERFACES = {
     "fabric": ("fabric/aniso-fabric", [([], "--input")]),
     "probe": ("probe/aniso-probe", [(["fork"], "--fork"), (["collect"], "--input")]),
     "voxel": ("voxel/aniso-voxel", [([], "--input")]),
-    "lbm": ("lbm/aniso-lbm", [([], "--direction")]),
+    "lbm": ("lbm/aniso-lbm", [([], "--direction"), (["collect"], "--input")]),
 }
 # The message of common/stage_stub.cpp: an executable that still links the stub holds it.
 STUB_MARK = b"this stage is not built yet"

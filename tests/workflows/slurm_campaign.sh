@@ -98,4 +98,53 @@ fi
 "$workflows/slurm/submit.py" --config "$config" --out "$work/slurm" --bin "$build_dir" --wait 2>"$work/resubmit.log" \
   || fail "resubmission failed: $(cat "$work/resubmit.log")"
 grep -q 'nothing to submit' "$work/resubmit.log" || fail "resubmission redid work: $(cat "$work/resubmit.log")"
+
+# The job-array plumbing of the analysis stages, with stand-ins for stages not
+# built yet (stage_double.py: text files naming the job and task that wrote
+# them) on a copy of the finished run: per checkpoint a 6-task probe array
+# then its collection, voxel then a 3-task LBM array then its collection,
+# fabric after the load, and the report after all of them.
+arrays=$work/arrays
+cp -a "$work/slurm" "$arrays" # -a keeps the times: prepare and load stay up to date
+rm -rf "$arrays/slurm"
+fakebin=$work/fakebin
+mkdir -p "$fakebin"
+ln -s "$build_dir/dem" "$fakebin/dem"
+for stage in fabric probe voxel lbm; do
+  mkdir -p "$fakebin/$stage"
+  printf '#!/bin/sh\nexec /usr/bin/python3 %s %s "$@"\n' "$source_dir/tests/workflows/stage_double.py" "$stage" \
+    >"$fakebin/$stage/aniso-$stage"
+  chmod +x "$fakebin/$stage/aniso-$stage"
+done
+"$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" --wait 2>"$work/arrays.log" \
+  || fail "the analysis jobs failed: $(cat "$work/arrays.log"; tail -5 "$arrays"/slurm/*.log)"
+/usr/bin/python3 - "$arrays" "$work/arrays.log" <<'PY' || fail "job-array plumbing"
+import glob, re, sys
+run, log = sys.argv[1], open(sys.argv[2]).read()
+jobs = {m[0]: (m[1], m[2], m[3]) for m in re.findall(r"^submit: (\S+): job (\d+)( \(array of \d+\))?(?:, after ([\d,]+))?$", log, re.M)}
+assert "prepare" not in jobs and "load" not in jobs, f"finished steps were resubmitted: {sorted(jobs)}"
+def fields(path):
+    return dict(f.split("=", 1) for f in open(path).read().split() if "=" in f)
+for stem in ("load_000", "load_001", "load_002"):
+    assert jobs[f"probe-{stem}"][1] == " (array of 6)", jobs[f"probe-{stem}"]
+    assert jobs[f"lbm-{stem}"][1] == " (array of 3)", jobs[f"lbm-{stem}"]
+    for k in range(6):
+        f = fields(f"{run}/probe_{stem}_fork{k}.h5")
+        assert f["SLURM_ARRAY_JOB_ID"] == jobs[f"probe-{stem}"][0] and f["SLURM_ARRAY_TASK_ID"] == str(k) \
+            and f["fork"] == str(k), f"fork {k} of {stem}: {f}"
+    for d in range(3):
+        f = fields(f"{run}/permeability_image_{stem}_direction{d}.h5")
+        assert f["SLURM_ARRAY_JOB_ID"] == jobs[f"lbm-{stem}"][0] and f["SLURM_ARRAY_TASK_ID"] == str(d) \
+            and f["direction"] == str(d), f"direction {d} of {stem}: {f}"
+    assert jobs[f"probe-collect-{stem}"][2] == jobs[f"probe-{stem}"][0], "probe collect must wait for its forks"
+    assert jobs[f"lbm-{stem}"][2] == jobs[f"voxel-{stem}"][0], "the LBM array must wait for its image"
+    assert jobs[f"lbm-collect-{stem}"][2] == jobs[f"lbm-{stem}"][0], "LBM collect must wait for its directions"
+    for name in (f"probe_{stem}", f"voids_{stem}", f"permeability_image_{stem}"):
+        assert fields(f"{run}/{name}.h5")["SLURM_JOB_ID"], name
+assert sorted(jobs["report"][2].split(",")) == sorted(j[0] for n, j in jobs.items() if n != "report"), \
+    "the report must wait for every analysis job"
+print(f"slurm_campaign: {len(jobs)} analysis jobs, arrays and dependencies as planned")
+PY
+"$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" 2>"$work/arrays-again.log"
+grep -q 'nothing to submit' "$work/arrays-again.log" || fail "resubmission redid analyses: $(cat "$work/arrays-again.log")"
 echo "slurm_campaign: all checks passed"

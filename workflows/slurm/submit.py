@@ -110,7 +110,7 @@ def sbatch_command(step, waits_for, args, variables, log_dir):
         # --kill-on-invalid-dep: a failed upstream job cancels this one instead of leaving it pending
         command += ["--dependency=afterok:" + ":".join(job_ids), "--kill-on-invalid-dep=yes"]
     command += args.sbatch_arg
-    keep = [f"--assume-old={path}" for s in waits_for for path in s.expanded_targets()]
+    keep = [f"--upstream={path}" for s in waits_for for path in s.expanded_targets()]
     return command + [STEP_SCRIPT, WORKFLOWS, *variables, *keep, *step.targets]
 
 

@@ -1,0 +1,65 @@
+#!/usr/bin/python3
+"""A test double of an analysis stage's command line, for testing the
+workflow's job plumbing (arrays, dependencies, file names) before the real
+stage exists. It computes nothing: each "result" is a text file saying which
+command and which SLURM job and array task wrote it, and from which inputs.
+Only tests/workflows/slurm_campaign.sh uses it, from a throw-away BIN folder.
+
+usage: stage_double.py STAGE [fork|collect] --config F --set STAGE.output_dir=OUT --input FILE... [--fork K]
+                       [--direction D]
+"""
+import argparse
+import os
+import sys
+
+
+def stem(path):
+    return os.path.splitext(os.path.basename(path))[0]
+
+
+def record(path, args, inputs):
+    job = {k: os.environ.get(k, "") for k in ("SLURM_JOB_ID", "SLURM_ARRAY_JOB_ID", "SLURM_ARRAY_TASK_ID")}
+    for needed in inputs:
+        if not os.path.exists(needed):
+            sys.exit(f"stage_double: input {needed} missing when writing {path}")
+    with open(path + ".part", "w") as f:
+        f.write(" ".join(f"{k}={v}" for k, v in job.items()) + "\n")
+        f.write(f"stage={args.stage} command={args.command or '-'} fork={args.fork} direction={args.direction}\n")
+        f.write("inputs=" + " ".join(inputs) + "\n")
+    os.replace(path + ".part", path)
+
+
+def main():
+    parser = argparse.ArgumentParser(usage=__doc__)
+    parser.add_argument("stage", choices=["fabric", "probe", "voxel", "lbm"])
+    parser.add_argument("command", nargs="?", choices=["fork", "collect"])
+    parser.add_argument("--config")
+    parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--input", nargs="+", default=[])
+    parser.add_argument("--fork", type=int)
+    parser.add_argument("--direction", type=int)
+    args = parser.parse_args()
+    settings = dict(s.split("=", 1) for s in args.set)
+    out = settings[f"{args.stage}.output_dir"]
+    source = args.input[0]
+    if args.stage == "fabric":
+        record(f"{out}/fabric.h5", args, args.input)
+    elif args.stage == "probe" and args.command == "fork":
+        record(f"{out}/probe_{stem(source)}_fork{args.fork}.h5", args, [source])
+    elif args.stage == "probe" and args.command == "collect":
+        forks = [f"{out}/probe_{stem(source)}_fork{k}.h5" for k in range(6)]
+        record(f"{out}/probe_{stem(source)}.h5", args, forks)
+    elif args.stage == "voxel":
+        record(f"{out}/image_{stem(source)}.h5", args, [source])
+        record(f"{out}/voids_{stem(source)}.h5", args, [source])
+    elif args.stage == "lbm" and args.direction is not None:
+        record(f"{out}/permeability_{stem(source)}_direction{args.direction}.h5", args, [source])
+    elif args.stage == "lbm" and args.command == "collect":
+        directions = [f"{out}/permeability_{stem(source)}_direction{d}.h5" for d in range(3)]
+        record(f"{out}/permeability_{stem(source)}.h5", args, directions)
+    else:
+        sys.exit(f"stage_double: unexpected command line {sys.argv[1:]}")
+
+
+if __name__ == "__main__":
+    main()
