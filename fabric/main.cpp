@@ -6,6 +6,7 @@
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
+#include "common/h5/content_hash.hpp"
 #include "fabric/config.hpp"
 #include "fabric/measures.hpp"
 #include "fabric/output.hpp"
@@ -66,6 +67,7 @@ int run_fabric(int argc, char** argv, const mpi::Comm& comm) {
     const h5::Checkpoint checkpoint = h5::read_checkpoint(path, comm);
     if (options.dry_run) continue;
     measures.push_back(fabric::measure_fabric(checkpoint, path, config, comm));
+    measures.back().source_hash = h5::content_hash(path);
     log_measures(logger, measures.back());
   }
   fabric::LinkedResults linked;

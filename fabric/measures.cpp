@@ -2,7 +2,6 @@
 
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
-#include "common/h5/content_hash.hpp"
 #include "common/shape/ovoid.hpp"
 #include "fabric/body_intersection.hpp"
 #include "fabric/contact_graph.hpp"
@@ -33,26 +32,34 @@ enum Slot : std::size_t {
 };
 enum ScalarSlot : std::size_t { scalar_area, scalar_solid_volume, n_scalar_slots };
 
+// Symmetric tensors (everything but the stress and H) sum their upper triangle only.
+bool is_symmetric(Slot slot) {
+  return slot != slot_stress_contact && slot != slot_H && slot != slot_H_strong;
+}
+
 class Sums {
 public:
   Sums() : sums_(9 * n_tensor_slots + n_scalar_slots) {}
   void add(Slot slot, const Mat3& m) {
+    const bool symmetric = is_symmetric(slot);
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        sums_[9 * slot + static_cast<std::size_t>(3 * a + b)].add(m(a, b));
+      for (int b = symmetric ? a : 0; b < 3; ++b)
+        sums_[index(slot, a, b)].add(m(a, b));
   }
   void add(ScalarSlot slot, double value) { sums_[9 * n_tensor_slots + slot].add(value); }
   void reduce(const mpi::Comm& comm) { sums_ = comm.sum_exact(std::span<const ExactSum>(sums_)); }
   [[nodiscard]] Mat3 tensor(Slot slot) const {
+    const bool symmetric = is_symmetric(slot);
     Mat3 m;
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
-        m(a, b) = sums_[9 * slot + static_cast<std::size_t>(3 * a + b)].value();
+        m(a, b) = sums_[symmetric && b < a ? index(slot, b, a) : index(slot, a, b)].value();
     return m;
   }
   [[nodiscard]] double scalar(ScalarSlot slot) const { return sums_[9 * n_tensor_slots + slot].value(); }
 
 private:
+  static std::size_t index(Slot slot, int a, int b) { return 9 * slot + static_cast<std::size_t>(3 * a + b); }
   std::vector<ExactSum> sums_;
 };
 
@@ -70,25 +77,26 @@ double splice_angle_of(const h5::Checkpoint& checkpoint) {
   return OvoidShape::default_splice_angle;
 }
 
+// Messages are built only on failure: this runs over every particle and contact.
 void validate(const h5::Checkpoint& c, const std::string& path) {
   const std::size_t n = c.particles.size();
   require_file(n > 0, path + ": the checkpoint holds no particles");
   for (std::size_t k = 0; k < n; ++k) {
-    require_file(c.particles.id[k] == k,
-                 path + ": /particles/id is not 0..N-1 in order at row " + std::to_string(k));
-    const double alpha = c.particles.aspect_ratio[k];
-    require_file(c.particles.diameter[k] > 0 && alpha > 0 && alpha <= 1,
-                 path + ": particle " + std::to_string(k) + " has diameter " +
-                     std::to_string(c.particles.diameter[k]) + " m and aspect ratio " +
-                     std::to_string(alpha) + " (expected D > 0 and 0 < alpha <= 1)");
+    if (c.particles.id[k] != k)
+      throw FileError(path + ": /particles/id is not 0..N-1 in order at row " + std::to_string(k));
+    const double d = c.particles.diameter[k], alpha = c.particles.aspect_ratio[k];
+    if (!(d > 0 && alpha > 0 && alpha <= 1))
+      throw FileError(path + ": particle " + std::to_string(k) + " has diameter " + std::to_string(d) +
+                      " m and aspect ratio " + std::to_string(alpha) +
+                      " (expected D > 0 and 0 < alpha <= 1)");
   }
   for (std::size_t k = 0; k < c.contacts.size(); ++k) {
     const auto [i, j] = c.contacts.particles[k];
-    require_file(i < j && j < n, path + ": contact " + std::to_string(k) + " joins particles " +
-                                     std::to_string(i) + " and " + std::to_string(j) +
-                                     " (expected id_i < id_j < " + std::to_string(n) + ")");
-    require_file(std::abs(c.contacts.normal[k].norm() - 1.0) < 1e-9,
-                 path + ": /contacts/normal row " + std::to_string(k) + " is not a unit vector");
+    if (!(i < j && j < n))
+      throw FileError(path + ": contact " + std::to_string(k) + " joins particles " + std::to_string(i) +
+                      " and " + std::to_string(j) + " (expected id_i < id_j < " + std::to_string(n) + ")");
+    if (!(std::abs(c.contacts.normal[k].norm() - 1.0) < 1e-9))
+      throw FileError(path + ": /contacts/normal row " + std::to_string(k) + " is not a unit vector");
   }
 }
 
@@ -217,7 +225,6 @@ FabricMeasures measure_fabric(const h5::Checkpoint& c, const std::string& path, 
 
   FabricMeasures m;
   m.source = path;
-  m.source_hash = h5::content_hash(path);
   m.time = c.time;
   m.step = c.step;
   m.strain = c.cell.lengths.cwiseQuotient(c.cell.reference_lengths) - Vec3::Ones();

@@ -33,7 +33,7 @@ struct NamedScalar {
 
 struct FabricMeasures {
   std::string source;      ///< checkpoint path
-  std::string source_hash; ///< content hash of the checkpoint (common/h5/content_hash.hpp)
+  std::string source_hash; ///< content hash of the checkpoint (set by the caller: common/h5/content_hash.hpp)
   double time = 0;         ///< simulated time [s]
   std::int64_t step = 0;
   Vec3 strain = Vec3::Zero(); ///< engineering strain L / L0 - 1 per axis
