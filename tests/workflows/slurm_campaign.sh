@@ -103,7 +103,10 @@ grep -q 'nothing to submit' "$work/resubmit.log" || fail "resubmission redid wor
 # built yet (stage_double.py: text files naming the job and task that wrote
 # them) on a copy of the finished run: per checkpoint a 6-task probe array
 # then its collection, voxel then a 3-task LBM array then its collection,
-# fabric after the load, and the report after all of them.
+# fabric after the load, and the report after all of them. Probe fork 3 of
+# load_001 fails the first time: its collection and the report must be
+# cancelled, everything else must finish, and a resubmission must submit only
+# what is missing and redo no finished task.
 arrays=$work/arrays
 cp -a "$work/slurm" "$arrays" # -a keeps the times: prepare and load stay up to date
 rm -rf "$arrays/slurm"
@@ -116,34 +119,61 @@ for stage in fabric probe voxel lbm; do
     >"$fakebin/$stage/aniso-$stage"
   chmod +x "$fakebin/$stage/aniso-$stage"
 done
-"$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" --wait 2>"$work/arrays.log" \
-  || fail "the analysis jobs failed: $(cat "$work/arrays.log"; tail -5 "$arrays"/slurm/*.log)"
-/usr/bin/python3 - "$arrays" "$work/arrays.log" <<'PY' || fail "job-array plumbing"
-import glob, re, sys
-run, log = sys.argv[1], open(sys.argv[2]).read()
-jobs = {m[0]: (m[1], m[2], m[3]) for m in re.findall(r"^submit: (\S+): job (\d+)( \(array of \d+\))?(?:, after ([\d,]+))?$", log, re.M)}
+submit_arrays() { "$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" --wait; }
+if STAGE_DOUBLE_FAIL=probe_load_001_fork3 submit_arrays 2>"$work/arrays-failing.log"; then
+  fail "submit.py --wait returned 0 although a probe fork failed"
+fi
+grep -q 'probe-load_001: job [0-9]* task 3 ended FAILED; log: .*/probe-load_001-[0-9]*_3.log' "$work/arrays-failing.log" \
+  || fail "the failed fork was not reported: $(cat "$work/arrays-failing.log")"
+for step in probe-collect-load_001 report; do
+  grep -q "$step: job [0-9]* ended CANCELLED" "$work/arrays-failing.log" \
+    || fail "$step was not cancelled after its dependency failed: $(cat "$work/arrays-failing.log")"
+done
+[[ $(grep -c 'completed$' "$work/arrays-failing.log") -eq 14 ]] \
+  || fail "the 14 jobs that do not depend on the failed fork did not all complete: $(cat "$work/arrays-failing.log")"
+grep -q 'stage_double: failing on purpose' "$arrays"/slurm/probe-load_001-*_3.log || fail "fork 3's log lacks its error"
+[[ $(grep -c 'probe-load_001: job [0-9]* task' "$work/arrays-failing.log") -eq 1 ]] || fail "tasks other than 3 reported"
+[[ ! -e $arrays/probe_load_001_fork3.h5 && ! -e $arrays/probe_load_001.h5 ]] || fail "a failed step left a result"
+written_before=$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[01245].h5 "$arrays"/voids_*.h5)
+
+submit_arrays 2>"$work/arrays.log" || fail "the resubmission failed: $(cat "$work/arrays.log")"
+[[ $(grep -v 'completed$' "$work/arrays.log" | grep -Eo '^submit: [^:]+: job [0-9]+' | cut -d' ' -f2 | tr '\n' ' ') == \
+  "probe-load_001: probe-collect-load_001: report: " ]] \
+  || fail "the resubmission should submit exactly the failed array, its collection and the report: $(cat "$work/arrays.log")"
+[[ $written_before == "$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[01245].h5 "$arrays"/voids_*.h5)" ]] \
+  || fail "the resubmission rewrote finished results"
+/usr/bin/python3 - "$arrays" "$work/arrays-failing.log" "$work/arrays.log" <<'PY' || fail "job-array plumbing"
+import re, sys
+run = sys.argv[1]
+jobs = {}  # step -> [(job id, array text, after)] over both submissions
+for log in sys.argv[2:]:
+    for name, job, array, after in re.findall(r"^submit: (\S+): job (\d+)( \(array of \d+\))?(?:, after ([\d,]+))?$",
+                                             open(log).read(), re.M):
+        jobs.setdefault(name, []).append((job, array, after))
 assert "prepare" not in jobs and "load" not in jobs, f"finished steps were resubmitted: {sorted(jobs)}"
+ids = lambda name: [j[0] for j in jobs[name]]
 def fields(path):
     return dict(f.split("=", 1) for f in open(path).read().split() if "=" in f)
 for stem in ("load_000", "load_001", "load_002"):
-    assert jobs[f"probe-{stem}"][1] == " (array of 6)", jobs[f"probe-{stem}"]
-    assert jobs[f"lbm-{stem}"][1] == " (array of 3)", jobs[f"lbm-{stem}"]
+    assert all(j[1] == " (array of 6)" for j in jobs[f"probe-{stem}"]), jobs[f"probe-{stem}"]
+    assert all(j[1] == " (array of 3)" for j in jobs[f"lbm-{stem}"]), jobs[f"lbm-{stem}"]
     for k in range(6):
         f = fields(f"{run}/probe_{stem}_fork{k}.h5")
-        assert f["SLURM_ARRAY_JOB_ID"] == jobs[f"probe-{stem}"][0] and f["SLURM_ARRAY_TASK_ID"] == str(k) \
+        assert f["SLURM_ARRAY_JOB_ID"] in ids(f"probe-{stem}") and f["SLURM_ARRAY_TASK_ID"] == str(k) \
             and f["fork"] == str(k), f"fork {k} of {stem}: {f}"
     for d in range(3):
         f = fields(f"{run}/permeability_image_{stem}_direction{d}.h5")
-        assert f["SLURM_ARRAY_JOB_ID"] == jobs[f"lbm-{stem}"][0] and f["SLURM_ARRAY_TASK_ID"] == str(d) \
+        assert f["SLURM_ARRAY_JOB_ID"] in ids(f"lbm-{stem}") and f["SLURM_ARRAY_TASK_ID"] == str(d) \
             and f["direction"] == str(d), f"direction {d} of {stem}: {f}"
-    assert jobs[f"probe-collect-{stem}"][2] == jobs[f"probe-{stem}"][0], "probe collect must wait for its forks"
-    assert jobs[f"lbm-{stem}"][2] == jobs[f"voxel-{stem}"][0], "the LBM array must wait for its image"
-    assert jobs[f"lbm-collect-{stem}"][2] == jobs[f"lbm-{stem}"][0], "LBM collect must wait for its directions"
-    for name in (f"probe_{stem}", f"voids_{stem}", f"permeability_image_{stem}"):
-        assert fields(f"{run}/{name}.h5")["SLURM_JOB_ID"], name
-assert sorted(jobs["report"][2].split(",")) == sorted(j[0] for n, j in jobs.items() if n != "report"), \
+    for (job, _, after), upstream in zip(jobs[f"probe-collect-{stem}"], ids(f"probe-{stem}")):
+        assert after == upstream, "probe collect must wait for its forks"
+    assert jobs[f"lbm-{stem}"][0][2] == ids(f"voxel-{stem}")[0], "the LBM array must wait for its image"
+    assert jobs[f"lbm-collect-{stem}"][0][2] == ids(f"lbm-{stem}")[0], "LBM collect must wait for its directions"
+    assert fields(f"{run}/probe_{stem}.h5")["SLURM_JOB_ID"] == ids(f"probe-collect-{stem}")[-1]
+first_report_after = jobs["report"][0][2].split(",")
+assert sorted(first_report_after) == sorted(j[0][0] for n, j in jobs.items() if n != "report"), \
     "the report must wait for every analysis job"
-print(f"slurm_campaign: {len(jobs)} analysis jobs, arrays and dependencies as planned")
+print(f"slurm_campaign: {len(jobs)} analysis steps, arrays, dependencies, failure and recovery as planned")
 PY
 "$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" 2>"$work/arrays-again.log"
 grep -q 'nothing to submit' "$work/arrays-again.log" || fail "resubmission redid analyses: $(cat "$work/arrays-again.log")"

@@ -18,6 +18,8 @@ def stem(path):
 
 
 def record(path, args, inputs):
+    if os.environ.get("STAGE_DOUBLE_FAIL") == stem(path):  # a stage failure, for the failure tests
+        sys.exit(f"stage_double: failing on purpose instead of writing {path}")
     job = {k: os.environ.get(k, "") for k in ("SLURM_JOB_ID", "SLURM_ARRAY_JOB_ID", "SLURM_ARRAY_TASK_ID")}
     for needed in inputs:
         if not os.path.exists(needed):

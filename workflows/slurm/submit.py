@@ -145,16 +145,32 @@ def submit(steps, args, variables):
 
 
 def job_states(job_id):
-    """{task id: state} of a job or job array; {} once SLURM has forgotten it."""
+    """{array task id ("" for a plain job): state} of a job; {} once SLURM has forgotten it."""
     result = subprocess.run(["scontrol", "-o", "show", "job", job_id], capture_output=True, text=True)
     states = {}
     for line in result.stdout.splitlines():
         fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
-        states[fields.get("JobId", "?")] = fields.get("JobState", "UNKNOWN")
+        states[fields.get("ArrayTaskId", "")] = fields.get("JobState", "UNKNOWN")
     return states
 
 
-def wait(steps):
+def report_end(step, states, log_dir):
+    """Says how a finished job ended; True when every task completed."""
+    bad = {task: state for task, state in states.items() if state not in ENDED_OK}
+    if not bad:
+        say(f"{step.name}: job {step.job_id} completed")
+        return True
+    if set(bad.values()) == {"CANCELLED"} and len(bad) == len(states):
+        say(f"{step.name}: job {step.job_id} ended CANCELLED (a job it waits for failed, or scancel)")
+        return False
+    for task, state in sorted(bad.items()):
+        log = os.path.join(log_dir, f"{step.name}-{step.job_id}_{task}.log" if task else
+                           f"{step.name}-{step.job_id}.log")
+        say(f"{step.name}: job {step.job_id}{' task ' + task if task else ''} ended {state}; log: {log}")
+    return False
+
+
+def wait(steps, log_dir):
     """Polls every 0.5 s (sbatch --wait polls after 2, 10, 42 s...). True when all completed."""
     pending = {s.job_id: s for s in steps}
     ok = True
@@ -166,12 +182,8 @@ def wait(steps):
                 ok = False
             elif set(states.values()) & STILL_RUNNING:
                 continue
-            elif set(states.values()) <= ENDED_OK:
-                say(f"{step.name}: job {job_id} completed")
             else:
-                say(f"{step.name}: job {job_id} ended {' '.join(sorted(set(states.values())))}; "
-                    f"see its log in the run's slurm/ folder")
-                ok = False
+                ok = report_end(step, states, log_dir) and ok
             del pending[job_id]
         if pending:
             time.sleep(0.5)
@@ -201,7 +213,7 @@ def main():
         return
     if not steps:
         say("nothing to submit: the campaign is up to date")
-    elif args.wait and not wait(steps):
+    elif args.wait and not wait(steps, os.path.join(args.out, "slurm")):
         sys.exit(1)
 
 
