@@ -1,0 +1,147 @@
+#!/usr/bin/python3
+"""Unit tests of workflows/campaign.py (resume point, stage detection) and of
+workflows/slurm/submit.py --dry-run (the job plan, without a SLURM cluster).
+
+usage: test_campaign.py SOURCE_DIR BUILD_DIR
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SOURCE, BUILD = sys.argv[1], sys.argv[2]
+WORKFLOWS = os.path.join(SOURCE, "workflows")
+DOUBLE = os.path.join(SOURCE, "tests", "workflows", "stage_double.py")
+STUB_MESSAGE = "this stage is not built yet"
+
+
+def campaign(*words):
+    return subprocess.run([sys.executable, os.path.join(WORKFLOWS, "campaign.py"), *words], capture_output=True,
+                          text=True)
+
+
+def touch(path, when):
+    open(path, "a").close()
+    os.utime(path, (when, when))
+
+
+def fake_bin(folder, doubles, stubs=()):
+    """A BIN folder: the real aniso-dem, command-line doubles for `doubles`, stub copies for `stubs`."""
+    os.symlink(os.path.join(BUILD, "dem"), os.path.join(folder, "dem"))
+    for stage in doubles:
+        os.makedirs(os.path.join(folder, stage))
+        path = os.path.join(folder, stage, f"aniso-{stage}")
+        with open(path, "w") as f:
+            f.write(f'#!/bin/sh\nexec /usr/bin/python3 {DOUBLE} {stage} "$@"\n')
+        os.chmod(path, 0o755)
+    for stage in stubs:  # answers --help like a stage but holds the stub's message, as a stub binary does
+        os.makedirs(os.path.join(folder, stage))
+        path = os.path.join(folder, stage, f"aniso-{stage}")
+        with open(path, "w") as f:
+            f.write(f'#!/bin/sh\n# {STUB_MESSAGE}\nexec /usr/bin/python3 {DOUBLE} {stage} "$@"\n')
+        os.chmod(path, 0o755)
+    return folder
+
+
+class LoadInput(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.out = self.dir.name
+        self.config = os.path.join(self.out, "c.toml")
+        touch(self.config, 1000)
+        touch(os.path.join(self.out, "prepared.h5"), 1100)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def load_input(self):
+        result = campaign("load-input", self.out, self.config)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        return result.stdout.split(), result.stderr
+
+    def test_fresh_run_starts_from_the_prepared_assembly(self):
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5"])
+
+    def test_resumes_from_the_newest_checkpoint_the_history_covers(self):
+        touch(f"{self.out}/load_000.h5", 1200)
+        touch(f"{self.out}/load_001.h5", 1300)
+        touch(f"{self.out}/history.h5", 1301)
+        touch(f"{self.out}/load_002.h5", 1400)  # killed before the history was rewritten
+        arguments, log = self.load_input()
+        self.assertEqual(arguments, ["--input", f"{self.out}/load_001.h5", "--resume"])
+        self.assertIn("resuming the interrupted load from", log)
+
+    def test_checkpoints_older_than_the_config_are_not_resumed(self):
+        touch(f"{self.out}/load_000.h5", 900)
+        touch(f"{self.out}/history.h5", 950)
+        touch(self.config, 1000)
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5"])
+
+    def test_checkpoints_older_than_the_prepared_assembly_are_not_resumed(self):
+        touch(f"{self.out}/load_000.h5", 1050)
+        touch(f"{self.out}/history.h5", 1060)
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5"])
+
+
+class Stages(unittest.TestCase):
+    def test_only_stages_with_the_called_command_line_are_used(self):
+        with tempfile.TemporaryDirectory() as folder:
+            fake_bin(folder, doubles=["probe", "lbm"], stubs=["voxel"])
+            result = campaign("stages", folder)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertEqual(result.stdout.split(), ["probe", "lbm"])
+            self.assertRegex(result.stderr, r"skipping fabric: .*aniso-fabric not found")
+            self.assertRegex(result.stderr, r"skipping voxel: aniso-voxel is not built yet .*stage stub")
+
+    def test_the_stub_marker_is_the_stubs_message(self):
+        # campaign.py recognises a stage stub by this text of common/stage_stub.cpp
+        with open(os.path.join(WORKFLOWS, "campaign.py")) as f:
+            self.assertIn(f'STUB_MARK = b"{STUB_MESSAGE}"', f.read())
+        with open(os.path.join(SOURCE, "common", "stage_stub.cpp")) as f:
+            self.assertIn(STUB_MESSAGE, f.read())
+
+    def test_checkpoint_names_come_from_the_effective_config(self):
+        result = campaign("checkpoints", os.path.join(WORKFLOWS, "configs", "demo.toml"), BUILD)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(result.stdout.split(), [f"load_{k:03d}" for k in range(12)])
+
+    def test_missing_dem_is_named(self):
+        with tempfile.TemporaryDirectory() as folder:
+            result = campaign("checkpoints", os.path.join(WORKFLOWS, "configs", "e2e.toml"), folder)
+            self.assertNotEqual(result.returncode, 0)
+            self.assertIn("aniso-dem not found", result.stderr)
+
+
+class SubmitDryRun(unittest.TestCase):
+    def test_plan_has_arrays_and_dependencies(self):
+        with tempfile.TemporaryDirectory() as folder:
+            bin_dir = os.path.join(folder, "bin")
+            os.mkdir(bin_dir)
+            fake_bin(bin_dir, doubles=["fabric", "probe", "voxel", "lbm"])
+            result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config",
+                                     os.path.join(WORKFLOWS, "configs", "e2e.toml"), "--out",
+                                     os.path.join(folder, "run"), "--bin", bin_dir, "--ranks", "4",
+                                     "--sbatch-arg=--partition=batch", "--dry-run"],
+                                    capture_output=True, text=True)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            lines = result.stdout.splitlines()
+            names = [re.search(r"--job-name=aniso-(\S+)", line).group(1) for line in lines]
+            per_checkpoint = ["probe", "probe-collect", "voxel", "lbm", "lbm-collect"]
+            self.assertEqual(names, ["prepare", "load", "fabric"]
+                             + [f"{s}-load_00{k}" for k in range(3) for s in per_checkpoint] + ["report"])
+            plan = dict(zip(names, lines))
+            self.assertIn("--array=0-5", plan["probe-load_001"])
+            self.assertIn("--array=0-2", plan["lbm-load_001"])
+            self.assertIn("--dependency=afterok:<voxel-load_001>", plan["lbm-load_001"])
+            self.assertIn("--dependency=afterok:<probe-load_001>", plan["probe-collect-load_001"])
+            self.assertIn("--ntasks=4", plan["load"])
+            self.assertIn("--ntasks=1", plan["report"])
+            self.assertIn("probe_load_001_fork{task}.h5", plan["probe-load_001"])
+            self.assertTrue(all("--partition=batch" in line for line in lines))
+            self.assertEqual(plan["report"].count("<"), len(names) - 1, "the report waits for every step")
+
+
+if __name__ == "__main__":
+    unittest.main(argv=[sys.argv[0], "-v"])
