@@ -9,10 +9,10 @@ namespace aniso::voxel {
 
 struct VoxelConfig {
   std::string output_dir = ".";
-  double resolution = 20;   ///< voxels per d50 (the paper: 20)
-  double radius_step = 1.0; ///< ball and disk radii step [voxels]
-  int threads = 0;          ///< OpenMP threads per rank; 0 = OMP_NUM_THREADS or all cores
-  bool write_image = true;  ///< write image_<stem>.h5 + .xmf (the LBM stage reads it)
+  double resolution = 20;  ///< voxels per d50 (the paper: 20)
+  double radius_step = 0;  ///< ball and disk radii step [voxels]; 0 = every distinct digital element
+  int threads = 0;         ///< OpenMP threads per rank; 0 = OMP_NUM_THREADS or all cores
+  bool write_image = true; ///< write image_<stem>.h5 + .xmf (the LBM stage reads it)
 };
 
 VoxelConfig read_voxel_config(config::Reader& reader);

@@ -8,17 +8,42 @@
 #include <limits>
 
 namespace aniso::voxel {
-namespace {
 
-// Squared radius of the digital ball or disk of radius rho: |z|^2 <= rho^2 for integer |z|^2.
 std::uint32_t squared_radius(double rho) {
   return static_cast<std::uint32_t>(std::floor(rho * rho + 1e-9));
 }
 
-// Radii k * step, k = 0, 1, ..., up to the first whose erosion is empty (max_d2 <= r2): that
-// size and every larger one keep nothing.
-std::vector<double> radii(double step, std::uint32_t max_d2) {
+namespace {
+
+// True if r2 = a^2 + b^2 (+ c^2 when three squares are allowed): the squared radii at which the
+// digital disk (two) or ball (three) gains voxels. Three squares: all but 4^a (8b + 7) (Legendre).
+bool sum_of_squares(std::uint32_t r2, int squares) {
+  if (squares == 3) {
+    while (r2 != 0 && r2 % 4 == 0)
+      r2 /= 4;
+    return r2 % 8 != 7;
+  }
+  for (std::uint32_t a = 0; a * a <= r2; ++a) {
+    const std::uint32_t rest = r2 - a * a;
+    const auto b = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(rest)));
+    for (std::uint32_t c = b > 0 ? b - 1 : 0; c <= b + 1; ++c)
+      if (c * c == rest) return true;
+  }
+  return false;
+}
+
+} // namespace
+
+std::vector<double> opening_radii(double step, std::uint32_t max_d2, int squares) {
   std::vector<double> sizes{0.0};
+  if (step == 0) {
+    for (std::uint32_t r2 = 1;; ++r2) {
+      if (!sum_of_squares(r2, squares)) continue;
+      sizes.push_back(std::sqrt(static_cast<double>(r2)));
+      if (r2 >= max_d2) break;
+    }
+    return sizes;
+  }
   for (std::size_t k = 1;; ++k) {
     const double rho = static_cast<double>(k) * step;
     sizes.push_back(rho);
@@ -26,6 +51,8 @@ std::vector<double> radii(double step, std::uint32_t max_d2) {
   }
   return sizes;
 }
+
+namespace {
 
 std::uint32_t max_void_distance(std::span<const std::uint32_t> distance) {
   std::uint32_t largest = 0;
@@ -95,7 +122,8 @@ VoidAnalysis analyze_voids(const Grid& grid, std::span<const std::uint8_t> phase
     if ((family == 0 && !options.balls) || (family > 0 && !options.disks)) continue;
     const auto f = static_cast<std::size_t>(family);
     solid_distance[f] = distance_to_solid(grid, phase, axes[f]);
-    curves[f]->size = radii(options.radius_step, max_void_distance(solid_distance[f]));
+    curves[f]->size =
+        opening_radii(options.radius_step, max_void_distance(solid_distance[f]), family == 0 ? 3 : 2);
     curves[f]->kept.assign(curves[f]->size.size(), 0);
     curves[f]->kept[0] = result.void_voxels;
     for (std::size_t k = 1; k < curves[f]->size.size(); ++k)

@@ -30,7 +30,9 @@ struct Curve {
 };
 
 struct VoidAnalysisOptions {
-  double radius_step = 1.0; ///< ball and disk radii are k * radius_step voxels, k = 0, 1, ...
+  /// Ball and disk radii: 0 = every distinct digital element (rho = sqrt(r2) for every r2 that is a
+  /// sum of three (ball) or two (disk) squares); > 0 = k * radius_step voxels, k = 0, 1, ...
+  double radius_step = 0;
   bool balls = true;
   bool disks = true;
   bool spars = true;
@@ -44,6 +46,15 @@ struct VoidAnalysis {
   std::array<Curve, 3> disk; ///< eq. (fri), axis x1, x2, x3
   std::int64_t euler = 0;    ///< chi of the void, 26-connected void / 6-connected solid, periodic
 };
+
+/// Squared radius of the digital ball or disk of radius rho: the largest integer r2 <= rho^2.
+std::uint32_t squared_radius(double rho);
+
+/// Radii of the ball (squares = 3) or disk (squares = 2) openings, from 0 up to the first whose
+/// erosion is empty (squared_radius >= max_d2, the largest squared distance to the solid): that
+/// size and every larger one keep nothing. step > 0: k * step; step == 0: every distinct digital
+/// element, rho = sqrt(r2) for every r2 that is a sum of `squares` squares.
+std::vector<double> opening_radii(double step, std::uint32_t max_d2, int squares);
 
 /// Linear interpolation of the size where kept/void crosses 0.5 (see Curve::median).
 double median_size(const Curve& curve, std::uint64_t void_voxels);

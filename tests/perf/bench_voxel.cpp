@@ -5,7 +5,7 @@
 // (bench_voxel_peer.py), which compares its openings with ours voxel count for voxel count.
 //
 // usage: bench_voxel CHECKPOINT.h5 [--tiles A B C] [--resolution R] [--repeats N] [--threads T]
-//                    [--image OUT.h5] [--skip-families]
+//                    [--image OUT.h5] [--skip-families] [--radius-step S (default 0: every distinct element)]
 #include "common/h5/checkpoint.hpp"
 #include "common/h5/image.hpp"
 #include "common/mpi.hpp"
@@ -56,7 +56,8 @@ Seconds median_seconds(int repeats, const std::function<void()>& work) {
   return runs[runs.size() / 2];
 }
 
-// Times every size of one round family (ball: axes all; disk: a plane) after its distance map.
+// Every size of one round family (ball: axes all; disk: a plane) after its distance map, with the
+// radii aniso-voxel uses (voxel.radius_step = step). Returns the number of openings.
 std::size_t round_family(const voxel::Grid& grid, const std::vector<std::uint8_t>& phase, voxel::Axes axes,
                          double step) {
   const auto distance = voxel::distance_to_solid(grid, phase, axes);
@@ -64,15 +65,11 @@ std::size_t round_family(const voxel::Grid& grid, const std::vector<std::uint8_t
   for (const auto d2 : distance)
     if (d2 != voxel::infinite_distance) largest = std::max(largest, d2);
   std::vector<std::uint32_t> work;
-  std::size_t sizes = 0;
-  for (std::size_t k = 1;; ++k) {
-    const double rho = static_cast<double>(k) * step;
-    const auto r2 = static_cast<std::uint32_t>(std::floor(rho * rho + 1e-9));
-    static_cast<void>(voxel::round_opening_volume(grid, distance, axes, r2, work));
-    ++sizes;
-    if (r2 >= largest) break;
-  }
-  return sizes;
+  const std::vector<double> radii = voxel::opening_radii(step, largest, axes.count);
+  for (std::size_t k = 1; k < radii.size(); ++k)
+    static_cast<void>(
+        voxel::round_opening_volume(grid, distance, axes, voxel::squared_radius(radii[k]), work));
+  return radii.size() - 1;
 }
 
 } // namespace
@@ -92,6 +89,7 @@ int main(int argc, char** argv) {
   int repeats = 3;
   std::string image_path;
   bool families = true;
+  double radius_step = 0;
   for (int a = 2; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--tiles" && a + 3 < argc) {
@@ -105,6 +103,8 @@ int main(int argc, char** argv) {
       omp_set_num_threads(std::atoi(argv[++a]));
     } else if (arg == "--image" && a + 1 < argc) {
       image_path = argv[++a];
+    } else if (arg == "--radius-step" && a + 1 < argc) {
+      radius_step = std::atof(argv[++a]);
     } else if (arg == "--skip-families") {
       families = false;
     } else {
@@ -170,21 +170,25 @@ int main(int argc, char** argv) {
                           }),
            "all lengths, three axes");
     std::size_t ball_sizes = 0;
-    const Seconds t_ball =
-        median_seconds(repeats, [&] { ball_sizes = round_family(grid, phase, voxel::Axes::all(), 1.0); });
+    const Seconds t_ball = median_seconds(
+        repeats, [&] { ball_sizes = round_family(grid, phase, voxel::Axes::all(), radius_step); });
     report("ball", t_ball, per_size(ball_sizes, t_ball));
     std::size_t disk_sizes = 0;
     const Seconds t_disk = median_seconds(repeats, [&] {
       disk_sizes = 0;
       for (int axis = 0; axis < 3; ++axis)
-        disk_sizes += round_family(grid, phase, voxel::Axes::plane(axis), 1.0);
+        disk_sizes += round_family(grid, phase, voxel::Axes::plane(axis), radius_step);
     });
     report("disk x1..x3", t_disk, per_size(disk_sizes, t_disk));
   }
   voxel::VoidAnalysis analysis;
   report("whole analysis",
          median_seconds(repeats,
-                        [&] { analysis = voxel::analyze_voids(grid, phase, {}, mpi::Comm(MPI_COMM_SELF)); }),
+                        [&] {
+                          voxel::VoidAnalysisOptions options;
+                          options.radius_step = radius_step;
+                          analysis = voxel::analyze_voids(grid, phase, options, mpi::Comm(MPI_COMM_SELF));
+                        }),
          "ball median " + std::to_string(analysis.ball.median) + " voxels, Euler " +
              std::to_string(analysis.euler));
   std::printf("peak RSS %.0f MiB\n", static_cast<double>(voxel::peak_resident_bytes()) / 1048576.0);

@@ -26,8 +26,11 @@ using aniso::voxel::VoidAnalysis;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-VoidAnalysis analyze(const Grid& grid, const Mask& phase) {
-  return aniso::voxel::analyze_voids(grid, phase, {}, aniso::mpi::Comm(MPI_COMM_SELF));
+// Radius step 0: every distinct digital ball and disk; 1: integer radii.
+VoidAnalysis analyze(const Grid& grid, const Mask& phase, double radius_step = 0) {
+  aniso::voxel::VoidAnalysisOptions options;
+  options.radius_step = radius_step;
+  return aniso::voxel::analyze_voids(grid, phase, options, aniso::mpi::Comm(MPI_COMM_SELF));
 }
 
 double solid_fraction(const Mask& phase) {
@@ -42,7 +45,7 @@ TEST(Analytic, SlitChannelHasInfiniteFreePathAlongItAndBreadthHalfItsWidth) {
     for (std::size_t j = 0; j < grid.n[1]; ++j)
       for (std::size_t i = 0; i < grid.n[0]; ++i)
         phase[grid.index(i, j, k)] = 0;
-  const VoidAnalysis a = analyze(grid, phase);
+  const VoidAnalysis a = analyze(grid, phase, 1.0);
   EXPECT_EQ(a.void_voxels, 24U * 20U * width);
   EXPECT_EQ(a.spar[0].median, inf);
   EXPECT_EQ(a.spar[1].median, inf);
@@ -55,6 +58,13 @@ TEST(Analytic, SlitChannelHasInfiniteFreePathAlongItAndBreadthHalfItsWidth) {
   EXPECT_DOUBLE_EQ(a.disk[1].median, 0.5 * width);
   EXPECT_EQ(a.disk[2].median, inf); // disks in the slit's own plane never stop fitting
   EXPECT_EQ(a.euler, 0);
+
+  // Every distinct element: the last ball that fits is r^2 = 14 (15 is no sum of three squares,
+  // r^2 = 16 spans 9 voxels), the last disk r^2 = 13; the medians lie between those and 4.
+  const VoidAnalysis all = analyze(grid, phase);
+  EXPECT_DOUBLE_EQ(all.ball.median, 0.5 * (std::sqrt(14.0) + 4));
+  EXPECT_DOUBLE_EQ(all.disk[0].median, 0.5 * (std::sqrt(13.0) + 4));
+  EXPECT_EQ(all.spar[2].median, 7.5);
 }
 
 TEST(Analytic, SingleCavityOfKnownRadius) {
@@ -68,7 +78,7 @@ TEST(Analytic, SingleCavityOfKnownRadius) {
         if (d(i, 10) * d(i, 10) + d(j, 11) * d(j, 11) + d(k, 11) * d(k, 11) <= radius * radius)
           phase[grid.index(i, j, k)] = 0;
       }
-  const VoidAnalysis a = analyze(grid, phase);
+  const VoidAnalysis a = analyze(grid, phase, 1.0);
   ASSERT_EQ(a.ball.size.size(), static_cast<std::size_t>(radius) + 2);
   EXPECT_EQ(a.ball.kept[radius], a.void_voxels); // the cavity itself is the ball of radius 6
   EXPECT_EQ(a.ball.kept[radius + 1], 0U);

@@ -37,7 +37,8 @@ protected:
     aniso::h5::Checkpoint checkpoint = aniso::test::sample_checkpoint(5, 40, 25, 1);
     // A dense cell (solid fraction about 0.35) instead of the sample's dilute one.
     const aniso::Vec3 lengths(6e-3, 5e-3, 5.5e-3);
-    for (auto& position : checkpoint.particles.position) position = position.cwiseProduct(lengths / 0.01);
+    for (auto& position : checkpoint.particles.position)
+      position = position.cwiseProduct(lengths / 0.01);
     checkpoint.cell.lengths = lengths;
     // Aspect ratios down to 0.3 need a splice angle below 2 atan(0.3) = 0.58 rad.
     checkpoint.parameters.push_back({"ovoid_splice_angle", 0.5, "rad"});
@@ -99,7 +100,10 @@ TEST_F(VoxelStage, WritesTheImageAndTheVoidResults) {
   const auto fraction = voids.open_group("ball").open_dataset("fraction").read<double>();
   EXPECT_EQ(fraction.front(), 1.0);
   EXPECT_EQ(fraction.back(), 0.0);
-  EXPECT_TRUE(std::is_sorted(fraction.rbegin(), fraction.rend()));
+  // Not necessarily monotone: digital balls of successive radii are nested but do not form a
+  // granulometry (the larger is not open with respect to the smaller).
+  for (const double f : fraction)
+    EXPECT_TRUE(f >= 0 && f <= 1);
   EXPECT_EQ(voids.open_group("euler").read_attribute<std::int64_t>("counted_torus"), 40 - 25);
   const std::string csv = bytes_of(path("out/voids_ck.csv"));
   EXPECT_THAT(csv, HasSubstr("template,axis,size_voxels,size_m,size_d50,kept_voxels,fraction\nball,0,0,"));
