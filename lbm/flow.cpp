@@ -190,10 +190,10 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
     previous = mean;
     logger->debug("{}: step {}: <j> = ({:.6e}, {:.6e}, {:.6e}), relative change {:.3e}, Mach {:.3e}", s.label,
                   step, mean[0], mean[1], mean[2], change, mach);
-    const bool converged = have_previous && change <= s.tolerance;
+    const bool converged = have_previous && change <= s.tolerance && !s.fixed_steps;
     have_previous = true;
     if (converged || step + s.check_interval > s.max_steps) {
-      if (!converged)
+      if (!converged && !s.fixed_steps)
         throw ConvergenceError(fmt::format(
             "{}: not converged after {} steps (lbm.max_steps): the mean velocity still changes by {:.3g} per "
             "{} "

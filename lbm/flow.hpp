@@ -34,7 +34,10 @@ struct FlowSettings {
   double max_mach = 0.1;
   double mass_drift = 1e-6;   ///< limit on |mean delta rho| drift
   bool keep_velocity = false; ///< gather the velocity field on rank 0 at the end
+  bool fixed_steps = false;   ///< benchmarks: run exactly max_steps steps, no convergence test
   std::string label = "flow"; ///< names the run in messages
+
+  [[nodiscard]] double viscosity() const { return (tau - 0.5) / 3.0; }
 };
 
 struct FlowResult {

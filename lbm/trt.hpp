@@ -34,55 +34,71 @@ inline TrtRates make_trt_rates(double tau, double magic) {
   return {1.0 / tau, 1.0 / (lambda_minus + 0.5)};
 }
 
-/// Moments of one node before collision: density deviation and momentum j = sum f c + F/2.
-template <class Real> struct NodeMoments {
-  Real delta_rho;
-  std::array<Real, 3> momentum;
+/// Populations of W nodes, population-major so that each statement of the collision is a loop over
+/// lanes that the compiler turns into SIMD instructions.
+template <class Real, int W> struct NodeBlock {
+  Real g[d3q19::q][W]; ///< shifted populations, in: pre-collision, out: post-collision
+  Real delta_rho[W];   ///< out: density deviation
+  Real momentum[3][W]; ///< out: j = sum f c + F/2
 };
 
-/// Collides the shifted populations g (pre-collision, in place -> post-collision) under the body force
-/// density `force`. Returns the node's moments (velocity u = momentum / (1 + delta_rho)).
-template <class Real>
-inline NodeMoments<Real> collide_trt(std::array<Real, d3q19::q>& g, const std::array<Real, 3>& force,
-                                     Real omega_plus, Real omega_minus) {
+/// Collides the W nodes of `block` in place under the body force density `force` (Guo's scheme:
+/// u = j / rho with j = m + F/2, and source terms weighted by 1 - omega/2).
+template <class Real, int W>
+inline void collide_trt(NodeBlock<Real, W>& block, const std::array<Real, 3>& force, Real omega_plus,
+                        Real omega_minus) {
   using d3q19::c;
-  Real delta_rho = 0;
-  std::array<Real, 3> m{0, 0, 0};
-  for (std::size_t i = 0; i < d3q19::q; ++i) {
-    delta_rho += g[i];
-    m[0] += g[i] * Real(c[i][0]);
-    m[1] += g[i] * Real(c[i][1]);
-    m[2] += g[i] * Real(c[i][2]);
-  }
   const Real half = Real(0.5);
-  const std::array<Real, 3> j{m[0] + half * force[0], m[1] + half * force[1], m[2] + half * force[2]};
-  const Real rho = Real(1) + delta_rho;
-  const Real inv_rho = Real(1) / rho;
-  const std::array<Real, 3> u{j[0] * inv_rho, j[1] * inv_rho, j[2] * inv_rho};
-  const Real uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-  const Real uf = u[0] * force[0] + u[1] * force[1] + u[2] * force[2];
   const Real source_plus = Real(1) - half * omega_plus;
   const Real source_minus = Real(1) - half * omega_minus;
-
+  Real(&g)[d3q19::q][W] = block.g;
+  // Every statement below is a loop over the W lanes (nodes): straight-line bodies that vectorize.
+  Real rho[W], u0[W], u1[W], u2[W], uu[W], uf[W];
+  for (int l = 0; l < W; ++l) {
+    block.delta_rho[l] = 0;
+    block.momentum[0][l] = half * force[0];
+    block.momentum[1][l] = half * force[1];
+    block.momentum[2][l] = half * force[2];
+  }
+  for (std::size_t i = 0; i < d3q19::q; ++i)
+    for (int l = 0; l < W; ++l) {
+      block.delta_rho[l] += g[i][l];
+      block.momentum[0][l] += g[i][l] * Real(c[i][0]);
+      block.momentum[1][l] += g[i][l] * Real(c[i][1]);
+      block.momentum[2][l] += g[i][l] * Real(c[i][2]);
+    }
+  for (int l = 0; l < W; ++l) {
+    rho[l] = Real(1) + block.delta_rho[l];
+    const Real inv_rho = Real(1) / rho[l];
+    u0[l] = block.momentum[0][l] * inv_rho;
+    u1[l] = block.momentum[1][l] * inv_rho;
+    u2[l] = block.momentum[2][l] * inv_rho;
+    uu[l] = u0[l] * u0[l] + u1[l] * u1[l] + u2[l] * u2[l];
+    uf[l] = u0[l] * force[0] + u1[l] * force[1] + u2[l] * force[2];
+  }
   const Real w0 = Real(d3q19::w[0]);
-  const Real eq0 = w0 * (delta_rho - Real(1.5) * rho * uu);
-  g[0] += -omega_plus * (g[0] - eq0) + source_plus * w0 * Real(-3) * uf;
+  for (int l = 0; l < W; ++l) {
+    const Real eq0 = w0 * (block.delta_rho[l] - Real(1.5) * rho[l] * uu[l]);
+    g[0][l] += -omega_plus * (g[0][l] - eq0) + source_plus * w0 * Real(-3) * uf[l];
+  }
   for (std::size_t i = 1; i < d3q19::q; i += 2) {
     const Real wi = Real(d3q19::w[i]);
-    const Real cu = Real(c[i][0]) * u[0] + Real(c[i][1]) * u[1] + Real(c[i][2]) * u[2];
-    const Real cf = Real(c[i][0]) * force[0] + Real(c[i][1]) * force[1] + Real(c[i][2]) * force[2];
-    const Real eq_plus = wi * (delta_rho + rho * (Real(4.5) * cu * cu - Real(1.5) * uu));
-    const Real eq_minus = wi * rho * Real(3) * cu;
-    const Real g_plus = half * (g[i] + g[i + 1]);
-    const Real g_minus = half * (g[i] - g[i + 1]);
-    // Guo's source split into its even part, w (9 (c.u)(c.F) - 3 u.F), and its odd part, 3 w c.F.
-    const Real even =
-        -omega_plus * (g_plus - eq_plus) + source_plus * wi * (Real(9) * cu * cf - Real(3) * uf);
-    const Real odd = -omega_minus * (g_minus - eq_minus) + source_minus * wi * Real(3) * cf;
-    g[i] += even + odd;
-    g[i + 1] += even - odd;
+    const Real cx = Real(c[i][0]), cy = Real(c[i][1]), cz = Real(c[i][2]);
+    const Real cf = cx * force[0] + cy * force[1] + cz * force[2];
+    for (int l = 0; l < W; ++l) {
+      const Real cu = cx * u0[l] + cy * u1[l] + cz * u2[l];
+      const Real eq_plus = wi * (block.delta_rho[l] + rho[l] * (Real(4.5) * cu * cu - Real(1.5) * uu[l]));
+      const Real eq_minus = wi * rho[l] * Real(3) * cu;
+      const Real g_plus = half * (g[i][l] + g[i + 1][l]);
+      const Real g_minus = half * (g[i][l] - g[i + 1][l]);
+      // Guo's source split into its even part, w (9 (c.u)(c.F) - 3 u.F), and its odd part, 3 w c.F.
+      const Real even =
+          -omega_plus * (g_plus - eq_plus) + source_plus * wi * (Real(9) * cu * cf - Real(3) * uf[l]);
+      const Real odd = -omega_minus * (g_minus - eq_minus) + source_minus * wi * Real(3) * cf;
+      g[i][l] += even + odd;
+      g[i + 1][l] += even - odd;
+    }
   }
-  return {delta_rho, j};
 }
 
 } // namespace aniso::lbm

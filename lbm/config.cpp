@@ -1,0 +1,48 @@
+#include "lbm/config.hpp"
+
+namespace aniso::lbm {
+
+LbmConfig read_lbm_config(config::Reader& reader) {
+  using config::Range;
+  LbmConfig c;
+  PermeabilitySettings& p = c.permeability;
+  FlowSettings& f = p.flow;
+  p.method =
+      reader.choice("lbm.method", "periodic_body_force", {"periodic_body_force", "paper_walls"},
+                    "periodic_body_force: fully periodic, three force directions, whole tensor; "
+                    "paper_walls: the paper's no-slip then free-slip side walls and eq. (kijsolver)") ==
+              "paper_walls"
+          ? Method::paper_walls
+          : Method::periodic_body_force;
+  f.precision = reader.choice("lbm.precision", "double", {"double", "float"},
+                              "floating-point type of the populations and the collision") == "float"
+                    ? Precision::float32
+                    : Precision::float64;
+  f.tau = reader.real("lbm.tau", 1.0, "1", Range::open_closed(0.5, 10.0),
+                      "TRT relaxation time of the symmetric moments; viscosity nu = (tau - 1/2)/3");
+  f.magic = reader.real("lbm.magic", 3.0 / 16.0, "1", Range::positive(),
+                        "TRT magic parameter Lambda; 3/16 puts halfway bounce-back walls exactly midway");
+  p.body_force =
+      reader.real("lbm.body_force", 1e-5, "lattice", Range::open_closed(0.0, 1e-1),
+                  "driving force density in lattice units (velocity and Mach number scale with it)");
+  f.tolerance = reader.real("lbm.convergence.tolerance", 1e-5, "1", Range::open(0.0, 1.0),
+                            "converged when the mean velocity changes by less than this fraction per check "
+                            "interval");
+  f.check_interval = reader.integer("lbm.convergence.check_interval", 100, Range::closed(1, 1e6),
+                                    "steps between convergence and divergence checks");
+  f.max_steps = reader.integer("lbm.max_steps", 200000, Range::closed(1, 1e9),
+                               "step limit of each flow run (ConvergenceError when reached)");
+  f.max_mach = reader.real("lbm.divergence.max_mach", 0.1, "1", Range::open_closed(0.0, 1.0),
+                           "stop when max|u|/c_s exceeds this (compressibility error, onset of instability)");
+  f.mass_drift = reader.real("lbm.divergence.mass_drift", 1e-6, "1", Range::positive(),
+                             "stop when the mean density deviation drifts by more than this");
+  c.write_velocity = reader.boolean("lbm.write_velocity", false,
+                                    "also write the velocity field of every run (HDF5 + XDMF for ParaView)");
+  f.keep_velocity = c.write_velocity;
+  c.output_dir = reader.text("lbm.output_dir", ".", "folder for permeability_<image stem>.h5");
+  c.petsc_options =
+      reader.text("lbm.petsc_options", "", "PETSc options database entries, e.g. \"-log_view\"");
+  return c;
+}
+
+} // namespace aniso::lbm

@@ -1,0 +1,131 @@
+// Solver properties: TRT permeability independent of tau, single vs double precision, the
+// divergence and step-limit failures, and the inverse problem of eq. (kijsolver).
+#include "common/error.hpp"
+#include "common/log.hpp"
+#include "lbm/geometry.hpp"
+#include "lbm/permeability.hpp"
+#include "tests/lbm/petsc_environment.hpp"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+namespace aniso::lbm {
+namespace {
+
+const mpi::Comm world = mpi::Comm::world();
+
+double axis_permeability(const h5::VoxelImage& image, PermeabilitySettings settings) {
+  const FlowRun run = run_axis(image, settings, 0, FaceKind::periodic, world, make_silent_logger());
+  return settings.flow.viscosity() * run.result.mean_momentum[0] / settings.body_force;
+}
+
+PermeabilitySettings converged_settings() {
+  PermeabilitySettings settings;
+  settings.body_force = 1e-6;
+  settings.flow.tolerance = 1e-7;
+  settings.flow.check_interval = 50;
+  return settings;
+}
+
+TEST(Flow, PermeabilityIndependentOfTauWithinOnePercent) {
+  const int side = 16;
+  const h5::VoxelImage image = sphere_array(side, sphere_radius_for_solid_fraction(side, 0.125));
+  PermeabilitySettings settings = converged_settings();
+  settings.flow.tolerance = 1e-6;
+  settings.flow.tau = 1.0;
+  const double reference = axis_permeability(image, settings);
+  for (double tau : {0.55, 0.7, 1.5, 2.0}) {
+    settings.flow.tau = tau;
+    const double k = axis_permeability(image, settings);
+    std::cout << "tau " << tau << ": k / k(tau = 1) - 1 = " << k / reference - 1 << "\n";
+    EXPECT_NEAR(k / reference, 1.0, 0.01) << "tau " << tau;
+  }
+}
+
+TEST(Flow, SinglePrecisionAgreesWithDouble) {
+  const h5::VoxelImage image = square_duct(12, 4, 0);
+  PermeabilitySettings settings = converged_settings();
+  settings.body_force = 1e-5;
+  settings.flow.tolerance = 1e-6;
+  const double k_double = axis_permeability(image, settings);
+  settings.flow.precision = Precision::float32;
+  const double k_float = axis_permeability(image, settings);
+  std::cout << "float / double - 1 = " << k_float / k_double - 1 << "\n";
+  EXPECT_NEAR(k_float / k_double, 1.0, 1e-3);
+}
+
+TEST(Flow, InstabilityIsDetectedAndNamed) {
+  // tau close to 1/2 with a large force: the velocity runs away long before a result exists.
+  const h5::VoxelImage image = plane_channel(16, 4, 2);
+  PermeabilitySettings settings;
+  settings.flow.tau = 0.5005;
+  settings.body_force = 1e-2;
+  settings.flow.check_interval = 10;
+  try {
+    static_cast<void>(axis_permeability(image, settings));
+    FAIL() << "an unstable run returned a result";
+  } catch (const NumericalError& error) {
+    const std::string message = error.what();
+    EXPECT_TRUE(message.find("Mach") != std::string::npos || message.find("non-finite") != std::string::npos)
+        << message;
+    EXPECT_NE(message.find("lbm.body_force"), std::string::npos) << message;
+    EXPECT_EQ(error.code(), ExitCode::numerical_failure);
+  }
+}
+
+TEST(Flow, StepLimitIsAConvergenceError) {
+  const h5::VoxelImage image = plane_channel(16, 4, 2);
+  PermeabilitySettings settings = converged_settings();
+  settings.flow.max_steps = 200;
+  EXPECT_THROW(static_cast<void>(axis_permeability(image, settings)), ConvergenceError);
+}
+
+TEST(Flow, NoPoreSpaceIsRejected) {
+  h5::VoxelImage image = plane_channel(4, 4, 2);
+  std::fill(image.phase.begin(), image.phase.end(), std::uint8_t{1});
+  EXPECT_THROW(static_cast<void>(axis_permeability(image, converged_settings())), InputError);
+}
+
+TEST(InverseProblem, RecoversOffDiagonalTermsExactly) {
+  Mat3 k;
+  k << 3.0, 0.4, -0.2, 0.4, 2.0, 0.3, -0.2, 0.3, 1.5;
+  std::vector<Vec3> driving{Vec3(1.0, -0.1, 0.05), Vec3(0.2, 1.0, -0.15), Vec3(-0.1, 0.12, 1.0)};
+  std::vector<Vec3> flux;
+  for (const Vec3& g : driving)
+    flux.push_back(k * g);
+  double residual = 1;
+  const Mat3 solved = solve_off_diagonal(k.diagonal(), driving, flux, residual);
+  EXPECT_LT((solved - k).norm(), 1e-12);
+  EXPECT_LT(residual, 1e-12);
+}
+
+TEST(PaperMethod, SymmetricCellHasDiagonalTensor) {
+  const int side = 16;
+  const h5::VoxelImage image = sphere_array(side, sphere_radius_for_solid_fraction(side, 0.216));
+  PermeabilitySettings settings = converged_settings();
+  settings.method = Method::paper_walls;
+  settings.flow.tolerance = 1e-6;
+  const PermeabilityResult paper = compute_permeability(image, settings, world, make_silent_logger());
+  settings.method = Method::periodic_body_force;
+  const PermeabilityResult periodic = compute_permeability(image, settings, world, make_silent_logger());
+  ASSERT_EQ(paper.runs.size(), 6U);
+  for (int i = 0; i < 3; ++i) {
+    // Cubic symmetry: equal diagonal, zero off-diagonal terms in both methods.
+    EXPECT_NEAR(paper.k_lattice(i, i) / paper.k_lattice(0, 0), 1.0, 1e-9);
+    EXPECT_NEAR(periodic.k_lattice(i, i) / periodic.k_lattice(0, 0), 1.0, 1e-9);
+    for (int j = 0; j < 3; ++j)
+      if (i != j) {
+        EXPECT_LT(std::abs(paper.k_lattice(i, j)), 1e-6 * paper.k_lattice(0, 0));
+        EXPECT_LT(std::abs(periodic.k_lattice(i, j)), 1e-6 * periodic.k_lattice(0, 0));
+      }
+  }
+  // No-slip side walls add drag: the walled diagonal is below the periodic one.
+  EXPECT_LT(paper.k_lattice(0, 0), periodic.k_lattice(0, 0));
+  std::cout << "paper_walls k11 / periodic k11 = " << paper.k_lattice(0, 0) / periodic.k_lattice(0, 0)
+            << "\n";
+  EXPECT_LT(periodic.symmetry_error, 1e-6);
+}
+
+} // namespace
+} // namespace aniso::lbm
