@@ -36,6 +36,8 @@ packages=(
   slurm-wlm munge libpmix2
   # plots and reports
   python3 python3-numpy python3-h5py python3-scipy python3-matplotlib
+  # the voxel benchmark's scikit-image peer (tests/perf/bench_voxel_peer.py --skimage)
+  python3-skimage
 )
 
 command -v dpkg-query >/dev/null || {
