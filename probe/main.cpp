@@ -1,13 +1,143 @@
-// aniso-probe: incremental stiffness from six oedometric probes of one checkpoint (section 5).
+// aniso-probe: incremental stiffness from six oedometric probes of one checkpoint
+// (paper section 5). `run` does all seven forks (reference and six increments, split over the ranks) and
+// writes probe_<stem>.h5/.csv; `fork` runs one of them (SLURM job arrays) and `collect` assembles the result
+// from the seven fork files.
 #include "common/cli.hpp"
-#include "common/stage_stub.hpp"
+#include "common/error.hpp"
+#include "common/h5/checkpoint.hpp"
+#include "probe/collect.hpp"
+#include "probe/config.hpp"
+#include "probe/files.hpp"
+#include "probe/schedule.hpp"
+#include "probe/source.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+namespace {
+
+using namespace aniso;
+
+std::string csv_path_of(const std::string& h5_path) {
+  return std::filesystem::path(h5_path).replace_extension(".csv").string();
+}
+
+void report(const Logger& logger, const std::string& path, const probe::ProbeResult& result) {
+  const Mat3& c = result.stiffness.C;
+  const double k = result.stiffness.K_C;
+  logger->info("wrote {}: K_C = {:.5g} Pa, C11/K_C = {:.4f}, C22/K_C = {:.4f}, C33/K_C = {:.4f}, "
+               "max |D|/K_C = {:.4f}",
+               path, k, c(0, 0) / k, c(1, 1) / k, c(2, 2) / k, result.stiffness.D.cwiseAbs().maxCoeff() / k);
+}
+
+void write_result(const std::string& path, const probe::ProbeResult& result, const h5::Provenance& provenance,
+                  const std::string& warning, const Logger& logger, const mpi::Comm& comm) {
+  if (!warning.empty()) logger->warn("{}", warning);
+  if (comm.is_root()) {
+    probe::write_probe_result(path, result, provenance);
+    probe::write_probe_csv(csv_path_of(path), result);
+  }
+  report(logger, path, result);
+}
+
+int run_probe(int argc, char** argv, const mpi::Comm& comm) {
+  CLI::App app{"aniso-probe: incremental stiffness Q+, Q-, C, D from six oedometric forks of a checkpoint "
+               "(Kuhn, Sun & Wang 2015, section 5)"};
+  cli::CommonOptions options;
+  cli::add_common_options(app, options, "aniso-probe");
+  app.require_subcommand(1);
+  auto* run = app.add_subcommand("run", "all seven forks (reference and six increments, split over the "
+                                        "ranks); writes <output_dir>/probe_<stem>.h5 "
+                                        "and .csv");
+  auto* fork =
+      app.add_subcommand("fork", "one fork (for job arrays); writes <output_dir>/probe_<stem>_fork<N>.h5");
+  auto* collect =
+      app.add_subcommand("collect", "assembles probe_<stem>.h5 and .csv from the seven fork files of "
+                                    "a checkpoint, refusing forks of another checkpoint");
+  std::string input;
+  int fork_index = 0;
+  std::vector<std::string> fork_files;
+  run->add_option("--input", input, "checkpoint written by aniso-dem (HDF5)")->required();
+  fork->add_option("--input", input, "checkpoint written by aniso-dem (HDF5)")->required();
+  fork->add_option(
+          "--fork", fork_index,
+          "fork number 0..6: 0 is the reference (no increment), 2a-1 is +increment on x_a, 2a is -increment")
+      ->required()
+      ->check(CLI::Range(probe::reference_fork, probe::n_forks));
+  collect->add_option("--input", input, "the checkpoint the forks came from (its content hash is checked)")
+      ->required();
+  collect->add_option("--forks", fork_files,
+                      "the seven fork files (default: <output_dir>/probe_<stem>_fork0..6.h5)");
+  for (auto* sub : {run, fork, collect})
+    sub->fallthrough();
+  if (auto code = cli::parse(app, argc, argv, comm)) return *code;
+
+  const auto source = cli::load_config(options);
+  config::Reader reader(source.table, source.name);
+  reader.tolerate_sections({"dem", "fabric", "voxel", "lbm", "workflow"});
+  const probe::ProbeConfig config = probe::read_probe_config(reader);
+  if (cli::finish_config(reader, options, comm)) return 0;
+  const Logger logger = make_logger("aniso-probe", comm, options.log_level);
+  const std::string command = cli::join_command_line(argc, argv);
+  const std::string result_file = probe::result_path(config.output_dir, input);
+
+  if (collect->parsed()) {
+    if (fork_files.empty()) {
+      for (int index = probe::reference_fork; index <= probe::n_forks; ++index) {
+        fork_files.push_back(probe::fork_path(config.output_dir, input, index));
+        require_file(std::filesystem::is_regular_file(fork_files.back()),
+                     fmt::format("fork {} is missing: '{}' does not exist", index, fork_files.back()));
+      }
+    }
+    std::vector<probe::ForkFile> files;
+    for (const auto& path : fork_files) {
+      require_file(std::filesystem::is_regular_file(path),
+                   fmt::format("fork file '{}' does not exist", path));
+      files.push_back(probe::read_fork_file(path));
+    }
+    const auto forks = probe::check_forks(files, fork_files, probe::shared_content_hash(input, comm));
+    logger->info("seven forks of '{}' agree (content hash {})", input, forks[0].source.hash);
+    if (options.dry_run) return 0;
+    std::string warning;
+    const probe::ProbeResult result = probe::assemble_result(forks, config, warning);
+    const auto provenance =
+        h5::make_provenance("aniso-probe collect", reader.effective_toml(), command, comm);
+    write_result(result_file, result, provenance, warning, logger, comm);
+    return 0;
+  }
+
+  const h5::Checkpoint checkpoint = h5::read_checkpoint(input, comm);
+  const probe::ProbeSource probe_source = probe::probe_source(input, checkpoint, comm);
+  logger->info("input '{}': {} particles, {} contacts, loading strain {:.5g}, content hash {}", input,
+               checkpoint.particles.size(), checkpoint.contacts.size(), probe_source.strain,
+               probe_source.hash);
+  if (options.dry_run) return 0;
+  if (comm.is_root()) std::filesystem::create_directories(config.output_dir);
+
+  if (fork->parsed()) {
+    const auto provenance = h5::make_provenance("aniso-probe fork", reader.effective_toml(), command, comm);
+    const probe::ForkFile file{probe_source, probe::fork_settings(config),
+                               probe::run_fork(checkpoint, input, fork_index, config, comm, logger)};
+    const std::string path = probe::fork_path(config.output_dir, input, fork_index);
+    if (comm.is_root()) probe::write_fork_file(path, file, provenance);
+    logger->info("wrote {}", path);
+    return 0;
+  }
+  const auto provenance = h5::make_provenance("aniso-probe run", reader.effective_toml(), command, comm);
+  const auto results = probe::run_all_forks(checkpoint, input, config, comm, logger);
+  std::array<probe::ForkFile, probe::n_fork_files> forks;
+  for (int k = 0; k < probe::n_fork_files; ++k)
+    forks[static_cast<std::size_t>(k)] = {probe_source, probe::fork_settings(config),
+                                          results[static_cast<std::size_t>(k)]};
+  std::string warning;
+  const probe::ProbeResult result = probe::assemble_result(forks, config, warning);
+  write_result(result_file, result, provenance, warning, logger, comm);
+  return 0;
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
-  return aniso::cli::run(
-      argc, argv, "aniso-probe", [](int argc_, char** argv_, const aniso::mpi::Comm& comm) {
-        return aniso::cli::run_pending_stage(
-            argc_, argv_, comm,
-            {"aniso-probe", "incremental stiffness from six oedometric probes of one checkpoint (section 5)",
-             "probe", aniso::cli::InputKind::checkpoint, 6});
-      });
+  return aniso::cli::run(argc, argv, "aniso-probe", run_probe);
 }
