@@ -3,7 +3,8 @@
 #   series on 1 and 2 ranks gives identical results files; correlations equal numpy's;
 #   a checkpoint without /contacts/force is refused with exit 3 naming the file and dataset,
 #   and the results file already there is left untouched; a linked result from a checkpoint
-#   outside the series is refused naming that file.
+#   outside the series is refused naming that file; too few checkpoints and clashing names are
+#   refused as bad input.
 # usage: cli_checks.sh WRITE_INPUTS ANISO_FABRIC SOURCE_DIR WORK_DIR
 set -u
 write_inputs=$1 fabric=$2 source=$3 work=$4
@@ -38,4 +39,12 @@ code=$?
 [ $code -eq 3 ] || { cat stray.log; fail "stray probe: exit $code, expected 3"; }
 grep -q "probe_load_005.h5" stray.log || fail "stray probe message does not name the file"
 [ ! -e stray/fabric_series.h5 ] || fail "a results file was written despite the error"
+# Too few checkpoints for a correlation, and two inputs with one name: bad input (exit 2).
+"$fabric" series --input in/load_000.h5 in/load_001.h5 > few.log 2>&1
+code=$?
+[ $code -eq 2 ] && grep -q "at least 3 checkpoints" few.log || { cat few.log; fail "series of 2: exit $code"; }
+mkdir -p copy && cp in/load_000.h5 copy/
+"$fabric" --input in/load_000.h5 copy/load_000.h5 --output same/fabric.h5 > same.log 2>&1
+code=$?
+[ $code -eq 2 ] && grep -q "share the name 'load_000'" same.log || { cat same.log; fail "same stems: exit $code"; }
 echo "all fabric command-line checks passed"

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "../common/checkpoint_sample.hpp"
+
 namespace aniso::fabric::test {
 
 enum class Lattice { simple_cubic, fcc };
@@ -126,16 +128,9 @@ inline h5::Checkpoint lattice_checkpoint(const LatticeSpec& spec) {
   return c;
 }
 
+/// The fixed provenance of the checkpoint tests (tests/common/checkpoint_sample.hpp).
 inline h5::Provenance test_provenance() {
-  h5::Provenance p;
-  p.program = "aniso fabric test";
-  p.version = "0.0.0";
-  p.git_hash = "test";
-  p.config = "[fabric]\n";
-  p.command_line = "test";
-  p.n_ranks = 1;
-  p.date = "2024-01-01T00:00:00Z";
-  return p;
+  return aniso::test::sample_provenance(1);
 }
 
 } // namespace aniso::fabric::test
