@@ -6,8 +6,9 @@ usage:
   campaign.py stages BIN               the analysis stages built with the command line the workflow calls
   campaign.py load-input OUT CONFIG    the arguments of `aniso-dem load` that continue an interrupted run
 
-`stages` prints one word per usable stage; for every other stage it writes one
-line to stderr saying why it is skipped. A stage counts as built when its
+`stages` prints one word per usable stage, then the optional command lines
+they offer (lbm-directions: one LBM run per flow direction); for every other
+stage it writes one line to stderr saying why it is skipped. A stage counts as built when its
 executable exists, is no longer the stub of common/stage_stub.cpp (which only
 validates its input) and its --help shows the options the workflow passes.
 
@@ -21,12 +22,18 @@ import subprocess
 import sys
 import tomllib
 
-# stage -> (executable under BIN, [(arguments for --help, text that help must contain)])
+# stage -> (executable under BIN, [(arguments for --help, text that help must contain)]): the
+# command lines workflows/Makefile uses.
 STAGE_INTERFACES = {
-    "fabric": ("fabric/aniso-fabric", [([], "--input")]),
+    "fabric": ("fabric/aniso-fabric", [([], "--input"), (["series"], "--probe")]),
     "probe": ("probe/aniso-probe", [(["fork"], "--fork"), (["collect"], "--input")]),
     "voxel": ("voxel/aniso-voxel", [([], "--input")]),
-    "lbm": ("lbm/aniso-lbm", [([], "--direction"), (["collect"], "--input")]),
+    "lbm": ("lbm/aniso-lbm", [([], "--input")]),
+}
+# Optional command lines of a usable stage: feature -> (stage, checks as above).
+# lbm-directions: one flow direction per run (--direction D), then `collect`, for job arrays.
+STAGE_FEATURES = {
+    "lbm-directions": ("lbm", [([], "--direction"), (["collect"], "--input")]),
 }
 # The message of common/stage_stub.cpp: an executable that still links the stub holds it.
 STUB_MARK = b"this stage is not built yet"
@@ -53,18 +60,24 @@ def help_text(executable, arguments):
     return result.returncode, result.stdout + result.stderr
 
 
+def missing_options(executable, interface):
+    missing = []
+    for arguments, needle in interface:
+        code, text = help_text(executable, arguments)
+        if code != 0 or needle not in text:
+            missing.append(" ".join([*arguments, needle]))
+    return missing
+
+
 def usable_stages(bin_dir):
+    """The usable stages, then the optional features they offer."""
     usable = []
     for stage, (relative, interface) in STAGE_INTERFACES.items():
         executable = os.path.join(bin_dir, relative)
         if not os.access(executable, os.X_OK):
             print(f"campaign: skipping {stage}: {executable} not found", file=sys.stderr)
             continue
-        missing = []
-        for arguments, needle in interface:
-            code, text = help_text(executable, arguments)
-            if code != 0 or needle not in text:
-                missing.append(" ".join([*arguments, needle]))
+        missing = missing_options(executable, interface)
         with open(executable, "rb") as binary:
             if STUB_MARK in binary.read():
                 missing.append("a computation (it is the stage stub)")
@@ -73,6 +86,9 @@ def usable_stages(bin_dir):
                   f"(it lacks: {', '.join(missing)}); no {stage} results are written", file=sys.stderr)
         else:
             usable.append(stage)
+    for feature, (stage, interface) in STAGE_FEATURES.items():
+        if stage in usable and not missing_options(os.path.join(bin_dir, STAGE_INTERFACES[stage][0]), interface):
+            usable.append(feature)
     return usable
 
 

@@ -101,12 +101,13 @@ grep -q 'nothing to submit' "$work/resubmit.log" || fail "resubmission redid wor
 
 # The job-array plumbing of the analysis stages, with stand-ins for stages not
 # built yet (stage_double.py: text files naming the job and task that wrote
-# them) on a copy of the finished run: per checkpoint a 6-task probe array
-# then its collection, voxel then a 3-task LBM array then its collection,
-# fabric after the load, and the report after all of them. Probe fork 3 of
-# load_001 fails the first time: its collection and the report must be
-# cancelled, everything else must finish, and a resubmission must submit only
-# what is missing and redo no finished task.
+# them) on a copy of the finished run: per checkpoint a 7-task probe array
+# (reference and six increments) then its collection, voxel then a 3-task LBM
+# array then its collection; fabric after the load, the fabric series after
+# all analyses, the report last. Probe fork 3 of load_001 fails the first
+# time: its collection, the series and the report must be cancelled,
+# everything else must finish, and a resubmission must submit only what is
+# missing and redo no finished task.
 arrays=$work/arrays
 cp -a "$work/slurm" "$arrays" # -a keeps the times: prepare and load stay up to date
 rm -rf "$arrays/slurm"
@@ -125,7 +126,7 @@ if STAGE_DOUBLE_FAIL=probe_load_001_fork3 submit_arrays 2>"$work/arrays-failing.
 fi
 grep -q 'probe-load_001: job [0-9]* task 3 ended FAILED; log: .*/probe-load_001-[0-9]*_3.log' "$work/arrays-failing.log" \
   || fail "the failed fork was not reported: $(cat "$work/arrays-failing.log")"
-for step in probe-collect-load_001 report; do
+for step in probe-collect-load_001 series report; do
   grep -q "$step: job [0-9]* ended CANCELLED" "$work/arrays-failing.log" \
     || fail "$step was not cancelled after its dependency failed: $(cat "$work/arrays-failing.log")"
 done
@@ -134,13 +135,13 @@ done
 grep -q 'stage_double: failing on purpose' "$arrays"/slurm/probe-load_001-*_3.log || fail "fork 3's log lacks its error"
 [[ $(grep -c 'probe-load_001: job [0-9]* task' "$work/arrays-failing.log") -eq 1 ]] || fail "tasks other than 3 reported"
 [[ ! -e $arrays/probe_load_001_fork3.h5 && ! -e $arrays/probe_load_001.h5 ]] || fail "a failed step left a result"
-written_before=$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[01245].h5 "$arrays"/voids_*.h5)
+written_before=$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[012456].h5 "$arrays"/voids_*.h5)
 
 submit_arrays 2>"$work/arrays.log" || fail "the resubmission failed: $(cat "$work/arrays.log")"
 [[ $(grep -v 'completed$' "$work/arrays.log" | grep -Eo '^submit: [^:]+: job [0-9]+' | cut -d' ' -f2 | tr '\n' ' ') == \
-  "probe-load_001: probe-collect-load_001: report: " ]] \
-  || fail "the resubmission should submit exactly the failed array, its collection and the report: $(cat "$work/arrays.log")"
-[[ $written_before == "$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[01245].h5 "$arrays"/voids_*.h5)" ]] \
+  "probe-load_001: probe-collect-load_001: series: report: " ]] \
+  || fail "the resubmission should submit exactly the failed array, its collection, the series and the report: $(cat "$work/arrays.log")"
+[[ $written_before == "$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[012456].h5 "$arrays"/voids_*.h5)" ]] \
   || fail "the resubmission rewrote finished results"
 /usr/bin/python3 - "$arrays" "$work/arrays-failing.log" "$work/arrays.log" <<'PY' || fail "job-array plumbing"
 import re, sys
@@ -155,9 +156,9 @@ ids = lambda name: [j[0] for j in jobs[name]]
 def fields(path):
     return dict(f.split("=", 1) for f in open(path).read().split() if "=" in f)
 for stem in ("load_000", "load_001", "load_002"):
-    assert all(j[1] == " (array of 6)" for j in jobs[f"probe-{stem}"]), jobs[f"probe-{stem}"]
+    assert all(j[1] == " (array of 7)" for j in jobs[f"probe-{stem}"]), jobs[f"probe-{stem}"]
     assert all(j[1] == " (array of 3)" for j in jobs[f"lbm-{stem}"]), jobs[f"lbm-{stem}"]
-    for k in range(6):
+    for k in range(7):
         f = fields(f"{run}/probe_{stem}_fork{k}.h5")
         assert f["SLURM_ARRAY_JOB_ID"] in ids(f"probe-{stem}") and f["SLURM_ARRAY_TASK_ID"] == str(k) \
             and f["fork"] == str(k), f"fork {k} of {stem}: {f}"
@@ -170,9 +171,12 @@ for stem in ("load_000", "load_001", "load_002"):
     assert jobs[f"lbm-{stem}"][0][2] == ids(f"voxel-{stem}")[0], "the LBM array must wait for its image"
     assert jobs[f"lbm-collect-{stem}"][0][2] == ids(f"lbm-{stem}")[0], "LBM collect must wait for its directions"
     assert fields(f"{run}/probe_{stem}.h5")["SLURM_JOB_ID"] == ids(f"probe-collect-{stem}")[-1]
-first_report_after = jobs["report"][0][2].split(",")
-assert sorted(first_report_after) == sorted(j[0][0] for n, j in jobs.items() if n != "report"), \
-    "the report must wait for every analysis job"
+assert sorted(jobs["series"][0][2].split(",")) == sorted(j[0][0] for n, j in jobs.items()
+                                                       if n not in ("series", "report")), \
+    "the series must wait for every analysis job"
+assert sorted(jobs["report"][0][2].split(",")) == sorted(j[0][0] for n, j in jobs.items() if n != "report"), \
+    "the report must wait for every other job"
+assert open(f"{run}/fabric_series.h5").read().count("/probe_load_") == 3, "the series reads the probe results"
 print(f"slurm_campaign: {len(jobs)} analysis steps, arrays, dependencies, failure and recovery as planned")
 PY
 "$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" 2>"$work/arrays-again.log"

@@ -5,8 +5,8 @@ stage exists. It computes nothing: each "result" is a text file saying which
 command and which SLURM job and array task wrote it, and from which inputs.
 Only tests/workflows/slurm_campaign.sh uses it, from a throw-away BIN folder.
 
-usage: stage_double.py STAGE [fork|collect] --config F --set STAGE.output_dir=OUT --input FILE... [--fork K]
-                       [--direction D]
+usage: stage_double.py STAGE [fork|collect|series] --config F --set STAGE.output_dir=OUT --input FILE...
+                       [--fork K] [--direction D] [--probe FILE...] [--voids FILE...] [--permeability FILE...]
 """
 import argparse
 import os
@@ -34,22 +34,26 @@ def record(path, args, inputs):
 def main():
     parser = argparse.ArgumentParser(usage=__doc__)
     parser.add_argument("stage", choices=["fabric", "probe", "voxel", "lbm"])
-    parser.add_argument("command", nargs="?", choices=["fork", "collect"])
+    parser.add_argument("command", nargs="?", choices=["fork", "collect", "series"])
     parser.add_argument("--config")
     parser.add_argument("--set", action="append", default=[])
     parser.add_argument("--input", nargs="+", default=[])
     parser.add_argument("--fork", type=int)
     parser.add_argument("--direction", type=int)
+    for results in ("--probe", "--voids", "--permeability"):
+        parser.add_argument(results, nargs="+", default=[])
     args = parser.parse_args()
     settings = dict(s.split("=", 1) for s in args.set)
     out = settings[f"{args.stage}.output_dir"]
     source = args.input[0]
-    if args.stage == "fabric":
+    if args.stage == "fabric" and args.command == "series":
+        record(f"{out}/fabric_series.h5", args, args.input + args.probe + args.voids + args.permeability)
+    elif args.stage == "fabric":
         record(f"{out}/fabric.h5", args, args.input)
     elif args.stage == "probe" and args.command == "fork":
         record(f"{out}/probe_{stem(source)}_fork{args.fork}.h5", args, [source])
     elif args.stage == "probe" and args.command == "collect":
-        forks = [f"{out}/probe_{stem(source)}_fork{k}.h5" for k in range(6)]
+        forks = [f"{out}/probe_{stem(source)}_fork{k}.h5" for k in range(7)]
         record(f"{out}/probe_{stem(source)}.h5", args, forks)
     elif args.stage == "voxel":
         record(f"{out}/image_{stem(source)}.h5", args, [source])

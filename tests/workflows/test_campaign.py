@@ -91,7 +91,7 @@ class Stages(unittest.TestCase):
             fake_bin(folder, doubles=["probe", "lbm"], stubs=["voxel"])
             result = campaign("stages", folder)
             self.assertEqual(result.returncode, 0, result.stderr)
-            self.assertEqual(result.stdout.split(), ["probe", "lbm"])
+            self.assertEqual(result.stdout.split(), ["probe", "lbm", "lbm-directions"])
             self.assertRegex(result.stderr, r"skipping fabric: .*aniso-fabric not found")
             self.assertRegex(result.stderr, r"skipping voxel: aniso-voxel is not built yet .*stage stub")
 
@@ -130,9 +130,9 @@ class SubmitDryRun(unittest.TestCase):
             names = [re.search(r"--job-name=aniso-(\S+)", line).group(1) for line in lines]
             per_checkpoint = ["probe", "probe-collect", "voxel", "lbm", "lbm-collect"]
             self.assertEqual(names, ["prepare", "load", "fabric"]
-                             + [f"{s}-load_00{k}" for k in range(3) for s in per_checkpoint] + ["report"])
+                             + [f"{s}-load_00{k}" for k in range(3) for s in per_checkpoint] + ["series", "report"])
             plan = dict(zip(names, lines))
-            self.assertIn("--array=0-5", plan["probe-load_001"])
+            self.assertIn("--array=0-6", plan["probe-load_001"])  # the reference fork and six increments
             self.assertIn("--array=0-2", plan["lbm-load_001"])
             self.assertIn("--dependency=afterok:<voxel-load_001>", plan["lbm-load_001"])
             self.assertIn("--dependency=afterok:<probe-load_001>", plan["probe-collect-load_001"])
@@ -140,6 +140,7 @@ class SubmitDryRun(unittest.TestCase):
             self.assertIn("--ntasks=1", plan["report"])
             self.assertIn("probe_load_001_fork{task}.h5", plan["probe-load_001"])
             self.assertTrue(all("--partition=batch" in line for line in lines))
+            self.assertEqual(plan["series"].count("<"), len(names) - 2, "the series waits for every analysis")
             self.assertEqual(plan["report"].count("<"), len(names) - 1, "the report waits for every step")
 
 
