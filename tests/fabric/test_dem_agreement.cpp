@@ -1,12 +1,16 @@
 // The contact stress, coordination and void ratio of a checkpoint written by the DEM equal
 // what the DEM itself measures at that state (dem/measures.hpp), for a small assembly built
 // with the DEM's public API (tests/dem/assembly_fixture.hpp) and loaded for a few steps.
+#include "dem/history.hpp"
 #include "dem/io.hpp"
 #include "dem/load.hpp"
 #include "dem/measures.hpp"
 #include "fabric/measures.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
 
 #include "../dem/assembly_fixture.hpp"
 
@@ -45,6 +49,41 @@ TEST(FabricDem, ContactStressAndCoordinationEqualTheDemsOwn) {
   EXPECT_EQ(m.coordination_no_rattlers, dem_state.coordination_no_rattlers);
   EXPECT_EQ(m.n_rattlers, dem_state.n_rattlers);
   EXPECT_NEAR(m.void_ratio, dem_state.void_ratio, 1e-12 * dem_state.void_ratio);
+}
+
+TEST(FabricDem, ContactStressOfLoadCheckpointsEqualsTheRecordedHistory) {
+  // A short loading run through the DEM's own driver: its history.h5 row at each checkpoint's
+  // step holds the stress the DEM measured there (contact + kinetic).
+  const mpi::Comm self(MPI_COMM_SELF);
+  dem::DemConfig config = dem::test::small_config(150, 12);
+  config.load.final_strain = 4e-4;
+  config.load.history_interval = 1e-4;
+  config.load.checkpoint_strains = {2e-4, 4e-4};
+  dem::Simulation simulation = dem::test::prepared_assembly(config);
+  dem::start_loading(simulation, config);
+  const dem::test::TemporaryFolder folder("fabric_dem_history");
+  const std::string out = folder.file("");
+  dem::run_loading(simulation, config, out, dem::test::test_provenance(), make_silent_logger(), false);
+  const dem::History history = dem::History::read(out);
+  const std::vector<std::string> columns{"stress_11", "stress_22", "stress_33",
+                                         "stress_23", "stress_13", "stress_12"};
+  const std::array<std::array<int, 2>, 6> entry{{{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}}};
+  for (std::size_t index = 0; index < config.load.checkpoint_strains.size(); ++index) {
+    const std::string path = dem::load_checkpoint_path(out, index);
+    const FabricMeasures m = measure_fabric(h5::read_checkpoint(path, self), path, FabricConfig{}, self);
+    const std::vector<double>& steps = history.column("step");
+    const auto row = std::find(steps.begin(), steps.end(), static_cast<double>(m.step));
+    ASSERT_NE(row, steps.end()) << "no history row at step " << m.step << " of " << path;
+    const auto r = static_cast<std::size_t>(row - steps.begin());
+    const Mat3 total = m.stress_contact + m.stress_kinetic;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const double recorded = history.column(columns[c])[r];
+      EXPECT_NEAR(total(entry[c][0], entry[c][1]), recorded, 1e-12 * std::abs(history.column("p")[r]))
+          << columns[c] << " of " << path;
+    }
+    EXPECT_NEAR(m.void_ratio, history.column("void_ratio")[r], 1e-12);
+    EXPECT_EQ(m.coordination, history.column("coordination")[r]);
+  }
 }
 
 } // namespace
