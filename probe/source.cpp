@@ -22,7 +22,12 @@ ProbeSource probe_source(const std::string& path, const h5::Checkpoint& checkpoi
   source.hash = shared_content_hash(path, comm);
   source.cell_strain = (checkpoint.cell.lengths - checkpoint.cell.reference_lengths)
                            .cwiseQuotient(checkpoint.cell.reference_lengths);
-  source.strain = -source.cell_strain[0];
+  // A prepared assembly (every axis stress-servoed: isotropic consolidation) has not been loaded;
+  // its reference lengths are those of the sparse start, so -eps_11 would be the compaction strain.
+  const auto& mode = checkpoint.cell.mode;
+  const bool prepared =
+      mode[0] == h5::AxisMode::stress && mode[1] == h5::AxisMode::stress && mode[2] == h5::AxisMode::stress;
+  source.strain = prepared ? 0.0 : -source.cell_strain[0];
   return source;
 }
 
