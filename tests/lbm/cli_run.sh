@@ -1,0 +1,50 @@
+#!/bin/bash
+# End-to-end checks of aniso-lbm on a small image: a run writes permeability_<stem>.h5 with the
+# contract's datasets; a diverging run exits 4 (numerical failure), names the cause, and leaves the
+# earlier result untouched; a run past its step limit exits 5.
+# usage: cli_run.sh ANISO_LBM MAKE_LBM_IMAGE MPIEXEC
+set -euo pipefail
+lbm=$1 make_image=$2 mpiexec=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$make_image" sphere_array "$work/cell.h5" --side 12 --solid-fraction 0.2 --voxel-size 1e-4
+fail() { echo "cli_run.sh: $*" >&2; exit 1; }
+
+"$mpiexec" --oversubscribe -n 2 "$lbm" --input "$work/cell.h5" --set lbm.output_dir="\"$work\"" \
+  --set lbm.convergence.tolerance=1e-4 --set lbm.write_velocity=true > "$work/run.log" 2>&1 || { cat "$work/run.log"; fail "run failed"; }
+result=$work/permeability_cell.h5
+[ -f "$result" ] || fail "no $result"
+[ -f "$work/velocity_cell.h5" ] && [ -f "$work/velocity_cell.xmf" ] || fail "no velocity field with XDMF sidecar"
+header=$(h5dump -H "$result")
+for name in 'DATASET "K"' 'DATASET "K_lattice"' 'ATTRIBUTE "method"' 'ATTRIBUTE "source_hash"'; do
+  grep -q "$name" <<< "$header" || fail "$result lacks $name"
+done
+# K in m^2 = K_lattice * voxel_size^2, diagonal positive.
+/usr/bin/python3 - "$result" <<'PY'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1]) as f:
+    g = f["permeability"]
+    k, kl = g["K"][...], g["K_lattice"][...]
+    assert g.attrs["method"] in (b"periodic_body_force", "periodic_body_force"), g.attrs["method"]
+    assert np.allclose(k, kl * 1e-8, rtol=1e-12), (k, kl)
+    assert (np.diag(kl) > 0).all(), kl
+PY
+checksum=$(md5sum < "$result")
+
+set +e
+"$lbm" --input "$work/cell.h5" --set lbm.output_dir="\"$work\"" --set lbm.tau=0.5005 --set lbm.body_force=0.05 \
+  > "$work/diverge.log" 2>&1
+code=$?
+set -e
+[ "$code" -eq 4 ] || { cat "$work/diverge.log"; fail "diverging run exited $code, expected 4"; }
+grep -qE "Mach|non-finite" "$work/diverge.log" || fail "divergence message does not name the cause"
+[ "$(md5sum < "$result")" = "$checksum" ] || fail "a diverged run changed the earlier result"
+ls "$work" | grep -q '\.tmp-' && fail "a temporary file was left behind"
+
+set +e
+"$lbm" --input "$work/cell.h5" --set lbm.output_dir="\"$work/limit\"" --set lbm.max_steps=100 > "$work/limit.log" 2>&1
+code=$?
+set -e
+[ "$code" -eq 5 ] || { cat "$work/limit.log"; fail "step-limited run exited $code, expected 5"; }
+[ ! -e "$work/limit/permeability_cell.h5" ] || fail "a non-converged run wrote a result"
+echo "cli_run.sh: all checks passed"
