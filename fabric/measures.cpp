@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
 #include "common/shape/ovoid.hpp"
+#include "common/units.hpp"
 #include "fabric/body_intersection.hpp"
 #include "fabric/contact_graph.hpp"
 #include "fabric/minkowski.hpp"
@@ -171,47 +172,50 @@ Mat3 mean_or_zero(const Mat3& sum, std::int64_t count, double scale) {
 std::vector<NamedScalar> FabricMeasures::scalars() const {
   const auto count = [](std::int64_t v) { return static_cast<double>(v); };
   return {
-      {"time", "s", "simulated time", time},
-      {"step", "1", "DEM time steps taken", count(step), true},
-      {"strain_11", "1", "engineering strain L1/L1_0 - 1 (compression negative)", strain[0]},
-      {"strain_22", "1", "engineering strain L2/L2_0 - 1", strain[1]},
-      {"strain_33", "1", "engineering strain L3/L3_0 - 1", strain[2]},
-      {"n_particles", "1", "N_p", count(n_particles), true},
-      {"n_contacts", "1", "N_c", count(n_contacts), true},
-      {"n_strong", "1", "contacts with normal force above strong_factor * mean", count(n_strong), true},
-      {"n_rattlers", "1", "particles peeled off as rattlers", count(n_rattlers), true},
-      {"n_triples", "1", "N_3: triples of particles sharing a point", count(n_triples), true},
-      {"n_quadruples", "1", "N_4: quadruples of particles sharing a point", count(n_quadruples), true},
-      {"mean_normal_force", "N", "mean contact normal force", mean_normal_force},
-      {"p", "Pa", "mean contact stress, compression positive", mean_stress},
-      {"q", "Pa", "sqrt(3 J2) of the contact stress", deviatoric_stress},
-      {"void_ratio", "1", "e = (V - V_solid) / V_solid", void_ratio},
-      {"coordination", "1", "Z = 2 N_c / N_p", coordination},
-      {"coordination_no_rattlers", "1", "Z without rattlers", coordination_no_rattlers},
-      {"chi_paper", "1", "chi^v = 1 + N_p - N_c, eq. (Chis1)", chi_paper},
-      {"chi_paper_per_particle", "1", "chi^v / N_p, eq. (Chivbar)", chi_paper / count(n_particles)},
-      {"chi_torus", "1", "chi^v = N_p - N_c + N_3 - N_4 of the void on the periodic cell", chi_torus},
-      {"chi_torus_per_particle", "1", "chi_torus / N_p", chi_torus / count(n_particles)},
+      {"time", units::second, "simulated time", time},
+      {"step", units::none, "DEM time steps taken", count(step), true},
+      {"strain_11", units::none, "engineering strain L1/L1_0 - 1 (compression negative)", strain[0]},
+      {"strain_22", units::none, "engineering strain L2/L2_0 - 1", strain[1]},
+      {"strain_33", units::none, "engineering strain L3/L3_0 - 1", strain[2]},
+      {"n_particles", units::none, "N_p", count(n_particles), true},
+      {"n_contacts", units::none, "N_c", count(n_contacts), true},
+      {"n_strong", units::none, "contacts with normal force above strong_factor * mean", count(n_strong),
+       true},
+      {"n_rattlers", units::none, "particles peeled off as rattlers", count(n_rattlers), true},
+      {"n_triples", units::none, "N_3: triples of particles sharing a point", count(n_triples), true},
+      {"n_quadruples", units::none, "N_4: quadruples of particles sharing a point", count(n_quadruples),
+       true},
+      {"mean_normal_force", units::newton, "mean contact normal force", mean_normal_force},
+      {"p", units::pascal, "mean contact stress, compression positive", mean_stress},
+      {"q", units::pascal, "sqrt(3 J2) of the contact stress", deviatoric_stress},
+      {"void_ratio", units::none, "e = (V - V_solid) / V_solid", void_ratio},
+      {"coordination", units::none, "Z = 2 N_c / N_p", coordination},
+      {"coordination_no_rattlers", units::none, "Z without rattlers", coordination_no_rattlers},
+      {"chi_paper", units::none, "chi^v = 1 + N_p - N_c, eq. (Chis1)", chi_paper},
+      {"chi_paper_per_particle", units::none, "chi^v / N_p, eq. (Chivbar)", chi_paper / count(n_particles)},
+      {"chi_torus", units::none, "chi^v = N_p - N_c + N_3 - N_4 of the void on the periodic cell", chi_torus},
+      {"chi_torus_per_particle", units::none, "chi_torus / N_p", chi_torus / count(n_particles)},
   };
 }
 
 std::vector<NamedTensor> FabricMeasures::tensors() const {
   return {
-      {"stress", "Pa", "contact stress (1/V) sum l (x) f, tension positive", stress_contact},
-      {"stress_kinetic", "Pa", "kinetic stress -(1/V) sum m v (x) v; stress + stress_kinetic = DEM stress",
-       stress_kinetic},
-      {"J", "1", "particle axes orientation tensor J^p, eq. (Jbar)", J},
-      {"I", "1", "surface inertia tensor I^s, eq. (Ipar)", I},
-      {"S", "1", "surface normals orientation tensor S^s, eq. (Sbar)", S},
-      {"F", "1", "contact normal orientation tensor F^c, eq. (Fc)", F},
-      {"F_strong", "1", "F^c over strong contacts, eq. (Fcstrong)", F_strong},
-      {"G", "1", "branch vector orientation tensor G^c / D50^2, eq. (Lc)", G},
-      {"G_strong", "1", "G^c over strong contacts, eq. (Lc)", G_strong},
-      {"H", "1", "mixed branch-normal tensor H^c / D50, eq. (Hbarc)", H},
-      {"H_strong", "1", "H^c over strong contacts, eq. (Hbarc)", H_strong},
-      {"W320", "m^2", "Minkowski tensor W_3^{2,0} about the cell centre, eq. (W320)", W320},
-      {"W320_boundary", "m^2", "W_3^{2,0} of the cell's boundary box, eqs. (W202), (blocka)", W320_boundary},
-      {"W320_normalized", "1", "normalized void Minkowski tensor, eq. (MinkNormal)", W320_normalized},
+      {"stress", units::pascal, "contact stress (1/V) sum l (x) f, tension positive", stress_contact},
+      {"stress_kinetic", units::pascal,
+       "kinetic stress -(1/V) sum m v (x) v; stress + stress_kinetic = DEM stress", stress_kinetic},
+      {"J", units::none, "particle axes orientation tensor J^p, eq. (Jbar)", J},
+      {"I", units::none, "surface inertia tensor I^s, eq. (Ipar)", I},
+      {"S", units::none, "surface normals orientation tensor S^s, eq. (Sbar)", S},
+      {"F", units::none, "contact normal orientation tensor F^c, eq. (Fc)", F},
+      {"F_strong", units::none, "F^c over strong contacts, eq. (Fcstrong)", F_strong},
+      {"G", units::none, "branch vector orientation tensor G^c / D50^2, eq. (Lc)", G},
+      {"G_strong", units::none, "G^c over strong contacts, eq. (Lc)", G_strong},
+      {"H", units::none, "mixed branch-normal tensor H^c / D50, eq. (Hbarc)", H},
+      {"H_strong", units::none, "H^c over strong contacts, eq. (Hbarc)", H_strong},
+      {"W320", units::square_metre, "Minkowski tensor W_3^{2,0} about the cell centre, eq. (W320)", W320},
+      {"W320_boundary", units::square_metre, "W_3^{2,0} of the cell's boundary box, eqs. (W202), (blocka)",
+       W320_boundary},
+      {"W320_normalized", units::none, "normalized void Minkowski tensor, eq. (MinkNormal)", W320_normalized},
   };
 }
 
