@@ -38,12 +38,12 @@ std::string read_hash(const h5::Object& object) {
   return hash;
 }
 
-std::string image_path(const std::string& permeability_path, const std::string& source) {
+// The permeability's source: the voxel image, or (as aniso-lbm writes it) the checkpoint that
+// image came from. A relative path is tried as given, then beside the permeability file.
+std::string resolve(const std::string& permeability_path, const std::string& source) {
   if (std::filesystem::exists(source)) return source;
   const auto beside = std::filesystem::path(permeability_path).parent_path() / source;
-  if (std::filesystem::exists(beside)) return beside.string();
-  throw FileError(permeability_path + ": /permeability: its source image '" + source +
-                  "' was not found (needed to link the permeability to a checkpoint)");
+  return std::filesystem::exists(beside) ? beside.string() : std::string();
 }
 
 } // namespace
@@ -66,8 +66,14 @@ Permeability read_permeability(const std::string& path) {
   Permeability k;
   k.path = path;
   k.K = read_matrix(group, "K");
-  const h5::File image = h5::File::open(image_path(path, group.read_string_attribute("source")));
-  k.checkpoint_hash = read_hash(image.open_group("image").open_dataset("phase"));
+  k.checkpoint_hash = read_hash(group);
+  // When the source is a voxel image, the checkpoint is the one the image names.
+  const std::string source = resolve(path, group.read_string_attribute("source"));
+  if (!source.empty()) {
+    const h5::File origin = h5::File::open(source);
+    if (origin.has_child("image"))
+      k.checkpoint_hash = read_hash(origin.open_group("image").open_dataset("phase"));
+  }
   return k;
 }
 

@@ -17,9 +17,9 @@ struct ProbeStiffness {
 };
 ProbeStiffness read_probe_stiffness(const std::string& path);
 
-/// permeability_<image stem>.h5: /permeability/K [3, 3] [m^2]; its source is the voxel image,
-/// whose /image/phase attribute source_hash names the checkpoint (the image is opened for it;
-/// a relative image path is tried as given, then beside the permeability file).
+/// permeability_<image stem>.h5: /permeability/K [3, 3] [m^2] with attributes source and
+/// source_hash. aniso-lbm records the checkpoint there (the image's own source); when `source` is
+/// instead a voxel image, the checkpoint is the one its /image/phase attribute source_hash names.
 struct Permeability {
   std::string path;
   std::string checkpoint_hash;

@@ -50,9 +50,12 @@ def main(inputs, results):
             voids[row_of[f["voids"].attrs["source"]]] = (f["voids/free_path_median"][()], f["voids/breadth_median"][()])
     for path in sorted(glob.glob(os.path.join(inputs, "permeability_*.h5"))):
         with h5py.File(path) as f:
-            image = os.path.join(inputs, f["permeability"].attrs["source"])
+            source = f["permeability"].attrs["source"]
             K = f["permeability/K"][()]
-        with h5py.File(image) as g:
+        if source in row_of:  # the checkpoint itself, as aniso-lbm records it
+            perm[row_of[source]] = K
+            continue
+        with h5py.File(os.path.join(inputs, source)) as g:  # a voxel image
             perm[row_of[g["image/phase"].attrs["source"]]] = K
     checked = 0
     for r in reported:

@@ -1,6 +1,8 @@
 // Test helper: writes a synthetic loading series into a folder for the command-line tests:
 //   load_000.h5 .. load_005.h5  FCC spheres compressed along x1 (extended along x3) step by step
 //   probe_load_00K.h5, voids_load_00K.h5, image_load_00K.h5 + permeability_image_load_00K.h5
+//                               (the permeability's source: the image for even K, the checkpoint
+//                               for odd K, as aniso-lbm writes it)
 //   broken.h5                   a checkpoint whose /contacts/force dataset was removed
 // Values of the linked results are smooth functions of the strain with some noise, so that the
 // correlations are neither trivial nor undefined.
@@ -33,7 +35,7 @@ void write_vector(h5::Group& group, const std::string& name, const Vec3& x) {
 }
 
 void write_linked(const std::string& folder, const std::string& stem, const std::string& checkpoint,
-                  double strain, RandomStream& noise) {
+                  double strain, bool image_source, RandomStream& noise) {
   const std::string hash = h5::content_hash(checkpoint);
   {
     h5::File file = h5::File::create(folder + "/probe_" + stem + ".h5");
@@ -69,8 +71,13 @@ void write_linked(const std::string& folder, const std::string& stem, const std:
   h5::write_voxel_image(folder + "/" + image_name, image, fabric::test::test_provenance());
   h5::File file = h5::File::create(folder + "/permeability_image_" + stem + ".h5");
   h5::Group g = file.create_group("permeability");
-  g.write_attribute("source", image_name); // relative: found beside the permeability file
-  g.write_attribute("source_hash", h5::content_hash(folder + "/" + image_name));
+  if (image_source) { // the source is the image (relative: found beside the permeability file)
+    g.write_attribute("source", image_name);
+    g.write_attribute("source_hash", h5::content_hash(folder + "/" + image_name));
+  } else { // as aniso-lbm writes it: the image's own source, the checkpoint
+    g.write_attribute("source", checkpoint);
+    g.write_attribute("source_hash", hash);
+  }
   g.write_attribute("method", std::string_view("periodic_body_force"));
   const Mat3 K =
       1e-11 * Vec3(1 + 2 * strain + 0.01 * noise.normal(), 1.0, 1 - 3 * strain).asDiagonal().toDenseMatrix();
@@ -97,7 +104,7 @@ int write_all(const std::string& folder) {
     std::snprintf(stem, sizeof stem, "load_%03d", k);
     const std::string path = folder + "/" + stem + ".h5";
     h5::write_checkpoint(path, c, fabric::test::test_provenance(), self);
-    write_linked(folder, stem, path, strain, noise);
+    write_linked(folder, stem, path, strain, k % 2 == 0, noise);
     if (k == 0) {
       h5::write_checkpoint(folder + "/broken.h5", c, fabric::test::test_provenance(), self);
       h5::File broken = h5::File::open(folder + "/broken.h5", h5::File::Access::read_write);
