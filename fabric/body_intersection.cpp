@@ -40,8 +40,8 @@ bool bodies_share_point(std::span<const PlacedBody> bodies) {
   double smallest = bodies[0].diameter;
   Vec3 x = Vec3::Zero();
   for (const PlacedBody& b : bodies) {
-    frames.push_back(
-        {OvoidShape(b.diameter, b.aspect_ratio, b.splice_angle), b.centre, b.orientation.toRotationMatrix()});
+    frames.push_back({OvoidShape(b.diameter, b.aspect_ratio, b.splice_angle), b.centre,
+                      b.orientation.normalized().toRotationMatrix()});
     smallest = std::min(smallest, b.diameter);
     x += b.centre / static_cast<double>(bodies.size());
   }

@@ -35,10 +35,4 @@ private:
   std::vector<Entry> entries_;
 };
 
-/// R A R^T for the body-to-world rotation of a unit quaternion.
-inline Mat3 rotate_to_world(const Quat& orientation, const Mat3& body) {
-  const Mat3 rotation = orientation.toRotationMatrix();
-  return rotation * body * rotation.transpose();
-}
-
 } // namespace aniso::fabric
