@@ -11,12 +11,17 @@
 #include "voxel/void_analysis.hpp"
 #include "voxel/void_results.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <omp.h>
 
 namespace aniso::voxel {
 namespace {
+
+constexpr double bytes_per_voxel = 21;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -44,10 +49,25 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
 
   const h5::Checkpoint checkpoint = h5::read_checkpoint(input, comm);
   const double d50 = h5::parameter(checkpoint, "d50", input);
+  if (!(std::isfinite(d50) && d50 > 0))
+    throw FileError(fmt::format("{}: /parameters d50 = {} m is not a positive length", input, d50));
   const auto shape = grid_shape(checkpoint.cell.lengths, d50, config.resolution);
-  logger->info("input '{}': {} particles, {} contacts; image {} x {} x {} = {} voxels at {} voxels per d50",
-               input, checkpoint.particles.size(), checkpoint.contacts.size(), shape[0], shape[1], shape[2],
-               shape[0] * shape[1] * shape[2], config.resolution);
+  const double voxels =
+      static_cast<double>(shape[0]) * static_cast<double>(shape[1]) * static_cast<double>(shape[2]);
+  // Per rank: the image (1 byte), four distance maps and a work map (4 bytes each) per voxel.
+  const double needed = bytes_per_voxel * voxels;
+  const double memory = physical_memory_bytes();
+  require_input(
+      memory == 0 || needed < memory,
+      fmt::format("voxel: {} x {} x {} voxels at resolution {} need about {:.1f} GiB per rank, more than "
+                  "this machine's {:.1f} GiB; lower voxel.resolution",
+                  shape[0], shape[1], shape[2], config.resolution, needed / 1073741824.0,
+                  memory / 1073741824.0));
+  logger->info(
+      "input '{}': {} particles, {} contacts; image {} x {} x {} = {} voxels at {} voxels per d50 (about "
+      "{:.2f} GiB per rank)",
+      input, checkpoint.particles.size(), checkpoint.contacts.size(), shape[0], shape[1], shape[2],
+      shape[0] * shape[1] * shape[2], config.resolution, needed / 1073741824.0);
   if (options.dry_run) return 0;
 
   const auto start = std::chrono::steady_clock::now();
@@ -86,10 +106,12 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
   const double porosity = static_cast<double>(analysis.void_voxels) / static_cast<double>(analysis.voxels);
   logger->info(
       "porosity {:.4f}; medians [d50]: ball {:.4f}; spar {:.4f} {:.4f} {:.4f}; disk {:.4f} {:.4f} {:.4f}",
-      porosity, analysis.ball.median / config.resolution, analysis.spar[0].median / config.resolution,
-      analysis.spar[1].median / config.resolution, analysis.spar[2].median / config.resolution,
-      analysis.disk[0].median / config.resolution, analysis.disk[1].median / config.resolution,
-      analysis.disk[2].median / config.resolution);
+      porosity, analysis.ball.median * image.voxel_size / d50,
+      analysis.spar[0].median * context.voxel_edges[0] / d50,
+      analysis.spar[1].median * context.voxel_edges[1] / d50,
+      analysis.spar[2].median * context.voxel_edges[2] / d50,
+      analysis.disk[0].median * image.voxel_size / d50, analysis.disk[1].median * image.voxel_size / d50,
+      analysis.disk[2].median * image.voxel_size / d50);
   logger->info(
       "Euler characteristic of the void: image {} (26-void/6-solid); counted 1 + Np - Nc = {}, on the "
       "torus Np - Nc = {}",
