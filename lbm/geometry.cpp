@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -75,6 +76,18 @@ h5::VoxelImage sphere_array(int side, double radius) {
   h5::VoxelImage image = empty_image({side, side, side});
   add_sphere(image, Vec3::Constant(0.5 * side), radius);
   return image;
+}
+
+h5::VoxelImage sphere_array_matching(int side, double phi) {
+  const double nominal = sphere_radius_for_solid_fraction(side, phi);
+  double low = 0.5 * nominal, high = std::min(1.5 * nominal, 0.5 * side * std::sqrt(2.0));
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const double mid = 0.5 * (low + high);
+    (solid_fraction(sphere_array(side, mid)) < phi ? low : high) = mid;
+  }
+  // The voxel count is a step function of the radius: take the closer of the two sides.
+  h5::VoxelImage below = sphere_array(side, low), above = sphere_array(side, high);
+  return std::abs(solid_fraction(below) - phi) <= std::abs(solid_fraction(above) - phi) ? below : above;
 }
 
 double sphere_radius_for_solid_fraction(int side, double phi) {

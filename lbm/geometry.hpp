@@ -21,6 +21,10 @@ h5::VoxelImage square_duct(int width, int length, int axis);
 /// the simple cubic array of Zick & Homsy. A voxel is solid if its centre lies inside the sphere.
 h5::VoxelImage sphere_array(int side, double radius);
 
+/// The sphere array whose voxelized solid fraction is closest to `phi` (the radius is adjusted by
+/// bisection, so the voxel solid volume matches the continuous one of Zick & Homsy's cell).
+h5::VoxelImage sphere_array_matching(int side, double phi);
+
 /// Sphere radius giving solid fraction `phi` in a cube of `side` (continuous, before voxelization).
 double sphere_radius_for_solid_fraction(int side, double phi);
 

@@ -25,9 +25,8 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "random: seed");
   app.add_option("--voxel-size", voxel_size, "voxel edge [m]")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
-  h5::VoxelImage image = kind == "sphere_array"
-                             ? lbm::sphere_array(side, lbm::sphere_radius_for_solid_fraction(side, phi))
-                             : lbm::random_spheres({side, side, side}, radius, phi, seed);
+  h5::VoxelImage image = kind == "sphere_array" ? lbm::sphere_array_matching(side, phi)
+                                                : lbm::random_spheres({side, side, side}, radius, phi, seed);
   image.voxel_size = voxel_size;
   const mpi::Comm comm = mpi::Comm::world();
   const auto provenance = h5::make_provenance("make_lbm_image", "", "make_lbm_image " + kind, comm);

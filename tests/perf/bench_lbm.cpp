@@ -7,6 +7,7 @@
 //
 // usage: [mpiexec -n N] bench_lbm [--image IMAGE.h5 | --side N --radius R --solid-fraction PHI]
 //                                 [--steps S] [--repeats K] [--precision double|float]
+#include "common/error.hpp"
 #include "common/h5/image.hpp"
 #include "common/log.hpp"
 #include "lbm/flow.hpp"
@@ -44,6 +45,9 @@ double triad_bandwidth(std::size_t n, int repeats) {
 
 } // namespace
 
+void run_benchmark(const std::string& image_path, int side, double radius, double phi, int steps, int repeats,
+                   const std::string& precision, const aniso::mpi::Comm& comm);
+
 int main(int argc, char** argv) {
   using namespace aniso;
   mpi::Environment environment(argc, argv);
@@ -62,6 +66,18 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "repetitions (median reported)")->check(CLI::Range(1, 100));
   app.add_option("--precision", precision, "double or float")->check(CLI::IsMember({"double", "float"}));
   CLI11_PARSE(app, argc, argv);
+  try {
+    run_benchmark(image_path, side, radius, phi, steps, repeats, precision, comm);
+  } catch (const Error& error) {
+    std::fprintf(stderr, "bench_lbm: %s\n", error.what());
+    return static_cast<int>(error.code());
+  }
+  return 0;
+}
+
+void run_benchmark(const std::string& image_path, int side, double radius, double phi, int steps, int repeats,
+                   const std::string& precision, const aniso::mpi::Comm& comm) {
+  using namespace aniso;
   const lbm::PetscSession petsc;
 
   const h5::VoxelImage image = image_path.empty() ? lbm::random_spheres({side, side, side}, radius, phi, 7)
@@ -104,5 +120,4 @@ int main(int argc, char** argv) {
         static_cast<double>(topology.n_fluid_global) / static_cast<double>(topology.n_voxels_global),
         precision.c_str(), steps, repeats, median, seconds.front(), seconds.back(), mlups, mflups,
         cpu_seconds[cpu_seconds.size() / 2], bandwidth * 1e-9, limit, 100.0 * mflups / limit);
-  return 0;
 }
