@@ -69,7 +69,7 @@ grep -q "resuming the interrupted load from $killed/load_00" "$work/rerun.log" \
   || fail "the rerun did not resume the load from a checkpoint: $(grep -i 'load' "$work/rerun.log" | head -3)"
 ! grep -q 'aniso-dem prepare' "$work/rerun.log" || fail "the rerun redid the preparation"
 [ "$before" = "$(stamps)" ] || fail "the rerun rewrote finished files: $before"
-"$source_dir/tests/workflows/compare_runs.sh" "$run" "$killed" || fail "the killed-and-rerun campaign differs"
+"$source_dir/tests/workflows/compare_runs.py" "$run" "$killed" || fail "the killed-and-rerun campaign differs"
 
 # A rerun finds everything up to date.
 if make -C "$source_dir/workflows" -q campaign CONFIG=configs/e2e.toml OUT="$run" BIN="$build_dir"; then :; else

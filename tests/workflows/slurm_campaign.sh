@@ -2,7 +2,8 @@
 # The SLURM path for real: starts a single-node SLURM cluster on localhost
 # (workflows/slurm/local-cluster.sh), submits the e2e campaign with
 # workflows/slurm/submit.py, waits for its jobs and checks that every result
-# equals a local `make campaign` of the same config bit for bit. Then a second
+# equals a local `make campaign` of the same config bit for bit
+# (compare_runs.py says what it compares). Then a second
 # submission must find nothing to do. The daemons are stopped on every exit.
 #
 # usage: slurm_campaign.sh SOURCE_DIR BUILD_DIR WORK_DIR
@@ -77,12 +78,14 @@ grep -q 'submit: report: job [0-9]*, after [0-9]*,[0-9]' "$work/submit.log" || f
   || fail "not every job completed: $(cat "$work/submit.log")"
 grep -q 'srun .*aniso-dem load' "$work"/slurm/slurm/load-*.log || fail "the load did not run through srun"
 
-"$source_dir/tests/workflows/compare_runs.sh" "$work/local" "$work/slurm" \
+"$source_dir/tests/workflows/compare_runs.py" "$work/local" "$work/slurm" \
   || fail "the SLURM campaign's results differ from the local run's"
 
 # The comparison itself must see a one-ulp change in one number.
-cp -r "$work/local" "$work/altered"
-/usr/bin/python3 - "$work/altered/history.h5" <<'PY'
+mkdir -p "$work/ulp/a" "$work/ulp/b"
+cp "$work/local/history.h5" "$work/ulp/a/"
+cp "$work/local/history.h5" "$work/ulp/b/"
+/usr/bin/python3 - "$work/ulp/b/history.h5" <<'PY'
 import sys, h5py, numpy as np
 with h5py.File(sys.argv[1], "r+") as f:
     p = f["history/p"]
@@ -90,27 +93,32 @@ with h5py.File(sys.argv[1], "r+") as f:
     values[-1] = np.nextafter(values[-1], np.inf)
     p[...] = values
 PY
-if "$source_dir/tests/workflows/compare_runs.sh" "$work/local" "$work/altered" 2>/dev/null; then
-  fail "compare_runs.sh missed a one-ulp change in history.h5"
+if "$source_dir/tests/workflows/compare_runs.py" "$work/ulp/a" "$work/ulp/b" 2>"$work/ulp.log"; then
+  fail "compare_runs.py missed a one-ulp change in history.h5"
 fi
+grep -q 'history.h5 differs: /history/p: values' "$work/ulp.log" || fail "compare_runs.py: $(cat "$work/ulp.log")"
 
 # Resubmitting a finished campaign submits nothing.
 "$workflows/slurm/submit.py" --config "$config" --out "$work/slurm" --bin "$build_dir" --wait 2>"$work/resubmit.log" \
   || fail "resubmission failed: $(cat "$work/resubmit.log")"
 grep -q 'nothing to submit' "$work/resubmit.log" || fail "resubmission redid work: $(cat "$work/resubmit.log")"
 
-# The job-array plumbing of the analysis stages, with stand-ins for stages not
-# built yet (stage_double.py: text files naming the job and task that wrote
-# them) on a copy of the finished run: per checkpoint a 7-task probe array
+# The job-array plumbing of the analysis stages, with command-line doubles of
+# the stages (stage_double.py: text files naming the job and task that wrote
+# them, so that this part runs in seconds and also before a stage is built),
+# on the finished run's first checkpoint alone: a 7-task probe array
 # (reference and six increments) then its collection, voxel then a 3-task LBM
 # array then its collection; fabric after the load, the fabric series after
-# all analyses, the report last. Probe fork 3 of load_001 fails the first
-# time: its collection, the series and the report must be cancelled,
-# everything else must finish, and a resubmission must submit only what is
-# missing and redo no finished task.
+# all analyses, the report last. Probe fork 3 fails the first time: its
+# collection, the series and the report must be cancelled, everything else
+# must finish, and a resubmission must submit only what is missing and redo
+# no finished task.
 arrays=$work/arrays
-cp -a "$work/slurm" "$arrays" # -a keeps the times: prepare and load stay up to date
-rm -rf "$arrays/slurm"
+arrays_config=$work/arrays.toml
+sed 's/^checkpoint_strains = .*/checkpoint_strains = [1e-4]/' "$config" >"$arrays_config"
+touch -d '2000-01-01' "$arrays_config" # older than the copied run, which stays up to date
+mkdir -p "$arrays"
+cp -a "$work/slurm"/{prepared.h5,load_000.h5,history.h5,history.csv,load.done,figures} "$arrays/"
 fakebin=$work/fakebin
 mkdir -p "$fakebin"
 ln -s "$build_dir/dem" "$fakebin/dem"
@@ -120,28 +128,28 @@ for stage in fabric probe voxel lbm; do
     >"$fakebin/$stage/aniso-$stage"
   chmod +x "$fakebin/$stage/aniso-$stage"
 done
-submit_arrays() { "$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" --wait; }
-if STAGE_DOUBLE_FAIL=probe_load_001_fork3 submit_arrays 2>"$work/arrays-failing.log"; then
+submit_arrays() { "$workflows/slurm/submit.py" --config "$arrays_config" --out "$arrays" --bin "$fakebin" "$@"; }
+if STAGE_DOUBLE_FAIL=probe_load_000_fork3 submit_arrays --wait 2>"$work/arrays-failing.log"; then
   fail "submit.py --wait returned 0 although a probe fork failed"
 fi
-grep -q 'probe-load_001: job [0-9]* task 3 ended FAILED; log: .*/probe-load_001-[0-9]*_3.log' "$work/arrays-failing.log" \
+grep -q 'probe-load_000: job [0-9]* task 3 ended FAILED; log: .*/probe-load_000-[0-9]*_3.log' "$work/arrays-failing.log" \
   || fail "the failed fork was not reported: $(cat "$work/arrays-failing.log")"
-for step in probe-collect-load_001 series report; do
+[[ $(grep -c 'probe-load_000: job [0-9]* task' "$work/arrays-failing.log") -eq 1 ]] || fail "tasks other than 3 reported"
+for step in probe-collect-load_000 series report; do
   grep -q "$step: job [0-9]* ended CANCELLED" "$work/arrays-failing.log" \
     || fail "$step was not cancelled after its dependency failed: $(cat "$work/arrays-failing.log")"
 done
-[[ $(grep -c 'completed$' "$work/arrays-failing.log") -eq 14 ]] \
-  || fail "the 14 jobs that do not depend on the failed fork did not all complete: $(cat "$work/arrays-failing.log")"
-grep -q 'stage_double: failing on purpose' "$arrays"/slurm/probe-load_001-*_3.log || fail "fork 3's log lacks its error"
-[[ $(grep -c 'probe-load_001: job [0-9]* task' "$work/arrays-failing.log") -eq 1 ]] || fail "tasks other than 3 reported"
-[[ ! -e $arrays/probe_load_001_fork3.h5 && ! -e $arrays/probe_load_001.h5 ]] || fail "a failed step left a result"
-written_before=$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[012456].h5 "$arrays"/voids_*.h5)
+[[ $(grep -c 'completed$' "$work/arrays-failing.log") -eq 4 ]] \
+  || fail "fabric, voxel, lbm and lbm-collect, which do not need the failed fork, did not complete: $(cat "$work/arrays-failing.log")"
+grep -q 'stage_double: failing on purpose' "$arrays"/slurm/probe-load_000-*_3.log || fail "fork 3's log lacks its error"
+[[ ! -e $arrays/probe_load_000_fork3.h5 && ! -e $arrays/probe_load_000.h5 ]] || fail "a failed step left a result"
+written_before=$(stat -c '%n %Y' "$arrays"/probe_load_000_fork[012456].h5 "$arrays"/voids_*.h5 "$arrays"/fabric.h5)
 
-submit_arrays 2>"$work/arrays.log" || fail "the resubmission failed: $(cat "$work/arrays.log")"
+submit_arrays --wait 2>"$work/arrays.log" || fail "the resubmission failed: $(cat "$work/arrays.log")"
 [[ $(grep -v 'completed$' "$work/arrays.log" | grep -Eo '^submit: [^:]+: job [0-9]+' | cut -d' ' -f2 | tr '\n' ' ') == \
-  "probe-load_001: probe-collect-load_001: series: report: " ]] \
+  "probe-load_000: probe-collect-load_000: series: report: " ]] \
   || fail "the resubmission should submit exactly the failed array, its collection, the series and the report: $(cat "$work/arrays.log")"
-[[ $written_before == "$(stat -c '%n %Y' "$arrays"/probe_load_001_fork[012456].h5 "$arrays"/voids_*.h5)" ]] \
+[[ $written_before == "$(stat -c '%n %Y' "$arrays"/probe_load_000_fork[012456].h5 "$arrays"/voids_*.h5 "$arrays"/fabric.h5)" ]] \
   || fail "the resubmission rewrote finished results"
 /usr/bin/python3 - "$arrays" "$work/arrays-failing.log" "$work/arrays.log" <<'PY' || fail "job-array plumbing"
 import re, sys
@@ -155,30 +163,32 @@ assert "prepare" not in jobs and "load" not in jobs, f"finished steps were resub
 ids = lambda name: [j[0] for j in jobs[name]]
 def fields(path):
     return dict(f.split("=", 1) for f in open(path).read().split() if "=" in f)
-for stem in ("load_000", "load_001", "load_002"):
-    assert all(j[1] == " (array of 7)" for j in jobs[f"probe-{stem}"]), jobs[f"probe-{stem}"]
-    assert all(j[1] == " (array of 3)" for j in jobs[f"lbm-{stem}"]), jobs[f"lbm-{stem}"]
-    for k in range(7):
-        f = fields(f"{run}/probe_{stem}_fork{k}.h5")
-        assert f["SLURM_ARRAY_JOB_ID"] in ids(f"probe-{stem}") and f["SLURM_ARRAY_TASK_ID"] == str(k) \
-            and f["fork"] == str(k), f"fork {k} of {stem}: {f}"
-    for d in range(3):
-        f = fields(f"{run}/permeability_image_{stem}_direction{d}.h5")
-        assert f["SLURM_ARRAY_JOB_ID"] in ids(f"lbm-{stem}") and f["SLURM_ARRAY_TASK_ID"] == str(d) \
-            and f["direction"] == str(d), f"direction {d} of {stem}: {f}"
-    for (job, _, after), upstream in zip(jobs[f"probe-collect-{stem}"], ids(f"probe-{stem}")):
-        assert after == upstream, "probe collect must wait for its forks"
-    assert jobs[f"lbm-{stem}"][0][2] == ids(f"voxel-{stem}")[0], "the LBM array must wait for its image"
-    assert jobs[f"lbm-collect-{stem}"][0][2] == ids(f"lbm-{stem}")[0], "LBM collect must wait for its directions"
-    assert fields(f"{run}/probe_{stem}.h5")["SLURM_JOB_ID"] == ids(f"probe-collect-{stem}")[-1]
+stem = "load_000"
+assert all(j[1] == " (array of 7)" for j in jobs[f"probe-{stem}"]), jobs[f"probe-{stem}"]
+assert all(j[1] == " (array of 3)" for j in jobs[f"lbm-{stem}"]), jobs[f"lbm-{stem}"]
+for k in range(7):
+    f = fields(f"{run}/probe_{stem}_fork{k}.h5")
+    expected = ids(f"probe-{stem}")[1 if k == 3 else 0]  # fork 3 ran again in the second submission
+    assert f["SLURM_ARRAY_JOB_ID"] == expected and f["SLURM_ARRAY_TASK_ID"] == str(k) and f["fork"] == str(k), \
+        f"fork {k}: {f}"
+for d in range(3):
+    f = fields(f"{run}/permeability_image_{stem}_direction{d}.h5")
+    assert f["SLURM_ARRAY_JOB_ID"] == ids(f"lbm-{stem}")[0] and f["SLURM_ARRAY_TASK_ID"] == str(d) \
+        and f["direction"] == str(d), f"direction {d}: {f}"
+for (job, _, after), upstream in zip(jobs[f"probe-collect-{stem}"], ids(f"probe-{stem}")):
+    assert after == upstream, "probe collect must wait for its forks"
+assert jobs[f"lbm-{stem}"][0][2] == ids(f"voxel-{stem}")[0], "the LBM array must wait for its image"
+assert jobs[f"lbm-collect-{stem}"][0][2] == ids(f"lbm-{stem}")[0], "LBM collect must wait for its directions"
+assert fields(f"{run}/probe_{stem}.h5")["SLURM_JOB_ID"] == ids(f"probe-collect-{stem}")[-1]
 assert sorted(jobs["series"][0][2].split(",")) == sorted(j[0][0] for n, j in jobs.items()
                                                        if n not in ("series", "report")), \
     "the series must wait for every analysis job"
 assert sorted(jobs["report"][0][2].split(",")) == sorted(j[0][0] for n, j in jobs.items() if n != "report"), \
     "the report must wait for every other job"
-assert open(f"{run}/fabric_series.h5").read().count("/probe_load_") == 3, "the series reads the probe results"
+series = open(f"{run}/fabric_series.h5").read()
+assert all(f"/{name}_{stem}.h5" in series for name in ("probe", "voids", "permeability_image")), series
 print(f"slurm_campaign: {len(jobs)} analysis steps, arrays, dependencies, failure and recovery as planned")
 PY
-"$workflows/slurm/submit.py" --config "$config" --out "$arrays" --bin "$fakebin" 2>"$work/arrays-again.log"
+submit_arrays 2>"$work/arrays-again.log"
 grep -q 'nothing to submit' "$work/arrays-again.log" || fail "resubmission redid analyses: $(cat "$work/arrays-again.log")"
 echo "slurm_campaign: all checks passed"
