@@ -57,6 +57,8 @@ ProbeStiffness read_probe_stiffness(const std::string& path) {
   p.C = read_matrix(group, "C");
   p.K_C = group.read_attribute<double>("K_C");
   if (!(std::isfinite(p.K_C) && p.K_C > 0)) group.fail("attribute K_C must be positive and finite");
+  if (group.has_attribute("checks_passed"))
+    p.checks_passed = group.read_attribute<std::int64_t>("checks_passed") != 0;
   return p;
 }
 

@@ -12,8 +12,9 @@ namespace aniso::fabric {
 struct ProbeStiffness {
   std::string path;
   std::string checkpoint_hash;
-  Mat3 C = Mat3::Zero(); ///< [Pa]
-  double K_C = 0;        ///< [Pa]
+  Mat3 C = Mat3::Zero();     ///< [Pa]
+  double K_C = 0;            ///< [Pa]
+  bool checks_passed = true; ///< the probe's own linearity/noise checks (attribute checks_passed, if present)
 };
 ProbeStiffness read_probe_stiffness(const std::string& path);
 
