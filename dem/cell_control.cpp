@@ -21,7 +21,7 @@ Vec3 axial_stiffness(const NeighborList& neighbors, const Particles& particles, 
     if (record.overlap <= 0 || pairs[c].i >= particles.n_owned) continue; // counted once, by pair.i's owner
     const double normal_stiffness =
         1.5 * record.normal_force / record.overlap; // Hertz: dF/d delta = 3F/(2 delta)
-    const Vec3 d = record.distance * record.normal;
+    const Vec3& d = record.branch;
     for (int a = 0; a < 3; ++a) {
       sums[static_cast<std::size_t>(a)].add(normal_stiffness * record.normal[a] * record.normal[a] * d[a] *
                                             d[a]);

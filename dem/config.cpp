@@ -5,6 +5,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <numbers>
+
 namespace aniso::dem {
 
 using config::Range;
@@ -26,8 +29,22 @@ DemConfig read_dem_config(config::Reader& reader) {
   p.aspect_ratio =
       reader.real("dem.particles.aspect_ratio", p.aspect_ratio, units::none, Range::open_closed(0.2, 1.0),
                   "axial height / mid-plane diameter (paper: 1, 0.8, 0.625, 0.5)");
+  p.splice_angle =
+      reader.real("dem.particles.splice_angle_degrees", p.splice_angle * 180.0 / std::numbers::pi,
+                  units::none, Range::open(0.0, 90.0),
+                  "ovoid splice angle beta between axis and surface normal where cap meets band, "
+                  "in degrees (Kuhn's OVAL: 45); must be below 2 atan(aspect_ratio)") *
+      std::numbers::pi / 180.0;
   p.density =
       reader.real("dem.particles.density", p.density, units::density, Range::positive(), "solid density");
+  if (p.aspect_ratio < 1.0) {
+    const double limit = 2.0 * std::atan(p.aspect_ratio);
+    require_input(p.splice_angle < limit,
+                  fmt::format("config key 'dem.particles.splice_angle_degrees': {:.6g} is not below "
+                              "2 atan(aspect_ratio) = {:.6g} degrees for aspect ratio {}",
+                              p.splice_angle * 180.0 / std::numbers::pi, limit * 180.0 / std::numbers::pi,
+                              p.aspect_ratio));
+  }
   require_input(
       p.diameter_min < p.d50 && p.d50 < p.diameter_max,
       fmt::format("config: need dem.particles.diameter_min < d50 < diameter_max, got {} < {} < {} m",
@@ -42,6 +59,12 @@ DemConfig read_dem_config(config::Reader& reader) {
                            "inter-particle friction for consolidation and loading");
   m.friction_prepare = reader.real("dem.material.friction_prepare", m.friction_prepare, units::none,
                                    Range::non_negative(), "inter-particle friction during compaction cycles");
+  m.hertz_radius =
+      reader.choice("dem.material.hertz_radius", "halfwidth", {"halfwidth", "curvature"},
+                    "ovoid Hertz radius: 'halfwidth' R* = a_i a_j / (a_i + a_j) as in Kuhn's "
+                    "code, or 'curvature' (elliptic Hertz from the surface curvatures)") == "curvature"
+          ? HertzRadius::curvature
+          : HertzRadius::halfwidth;
 
   auto& i = c.integration;
   i.time_step_fraction = reader.real(
@@ -70,9 +93,9 @@ DemConfig read_dem_config(config::Reader& reader) {
   require_input(pr.cell_aspect.size() == 3,
                 fmt::format("config key 'dem.prepare.cell_aspect': {} values given, expected exactly 3",
                             pr.cell_aspect.size()));
-  pr.initial_solid_fraction =
-      reader.real("dem.prepare.initial_solid_fraction", pr.initial_solid_fraction, units::none,
-                  Range::open(0.0, 0.4), "solid fraction of the sparse start");
+  pr.initial_solid_fraction = reader.real(
+      "dem.prepare.initial_solid_fraction", pr.initial_solid_fraction, units::none, Range::open(0.0, 0.4),
+      "solid fraction of the sparse start, counted with bounding spheres (half-width radius)");
   pr.cycles = reader.integer("dem.prepare.cycles", pr.cycles, Range::closed(1, 1000),
                              "compaction cycles (paper: 14)");
   pr.target_void_ratio = reader.real("dem.prepare.target_void_ratio", pr.target_void_ratio, units::none,

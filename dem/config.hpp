@@ -13,11 +13,18 @@ namespace aniso::dem {
 
 struct ParticleConfig {
   std::int64_t count = 1000;
-  double diameter_min = 0.075e-3; ///< [m]
-  double diameter_max = 0.28e-3;  ///< [m]
-  double d50 = 0.17e-3;           ///< median diameter by volume [m]
-  double aspect_ratio = 1.0;      ///< 1 = sphere, < 1 oblate ovoid
-  double density = 2650.0;        ///< [kg/m^3]
+  double diameter_min = 0.075e-3;           ///< [m]
+  double diameter_max = 0.28e-3;            ///< [m]
+  double d50 = 0.17e-3;                     ///< median diameter by volume [m]
+  double aspect_ratio = 1.0;                ///< 1 = sphere, < 1 oblate ovoid
+  double splice_angle = 0.7853981633974483; ///< ovoid splice angle beta [rad] (Kuhn's OVAL: 45 degrees)
+  double density = 2650.0;                  ///< [kg/m^3]
+};
+
+/// How the Hertz radius of an ovoid contact is chosen (/work/shared/reference/ovoid.md).
+enum class HertzRadius : std::uint8_t {
+  halfwidth = 0, ///< R* from the particles' half-widths a_i, as Kuhn's OVAL code does (the paper's)
+  curvature = 1, ///< elliptic Hertz from both surfaces' principal curvatures at the contact
 };
 
 struct MaterialConfig {
@@ -25,6 +32,7 @@ struct MaterialConfig {
   double poisson_ratio = 0.15;   ///< nu
   double friction = 0.5;         ///< mu during consolidation and loading
   double friction_prepare = 0.3; ///< mu during compaction cycles
+  HertzRadius hertz_radius = HertzRadius::halfwidth;
 };
 
 struct IntegrationConfig {

@@ -35,6 +35,9 @@ struct ContactKinematics {
 struct ContactHistory {
   Vec3 tangential_force = Vec3::Zero(); ///< elastic tangential force on i, built incrementally [N]
   bool sliding = false;
+  /// Last contact normal of a pair with an ovoid (zero: none), where its narrow phase starts:
+  /// part of the contact's state so that restarts and any rank count start from the same normal.
+  Vec3 normal = Vec3::Zero();
 };
 
 struct ContactForce {

@@ -5,8 +5,39 @@
 
 namespace aniso::dem {
 
+OvoidPairGeometry ovoid_pair_geometry(const Particles& particles, std::uint32_t i, std::uint32_t j,
+                                      const Vec3& d, const Vec3& guess, const PairProperties& properties,
+                                      const ContactInput& input, bool stop_if_separated) {
+  const ConvexBody a =
+      input.shapes->body(particles.radius[i], particles.aspect_ratio[i], particles.orientation[i]);
+  const ConvexBody b =
+      input.shapes->body(particles.radius[j], particles.aspect_ratio[j], particles.orientation[j]);
+  OvoidPairGeometry result;
+  result.contact =
+      convex_contact(a, b, d, guess, stop_if_separated, input.hertz_radius == HertzRadius::curvature);
+  result.hertz_radius =
+      input.hertz_radius == HertzRadius::curvature && result.contact.overlap > 0
+          ? elliptic_hertz_radius(result.contact.principal_radii[0], result.contact.principal_radii[1])
+          : properties.effective_radius;
+  return result;
+}
+
+namespace {
+
+// Forgets the history of a pair that has just come apart.
+void open_contact(ContactHistory& history, ContactRecord& record) {
+  if (record.overlap > 0 || history.sliding || !history.tangential_force.isZero(0.0) ||
+      !history.normal.isZero(0.0)) {
+    history = ContactHistory{};
+    record = ContactRecord{};
+  }
+}
+
+} // namespace
+
 ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
-                                 const ContactMaterial& material, double time_step, NeighborList& neighbors) {
+                                 const ContactMaterial& material, double time_step, const ContactInput& input,
+                                 NeighborList& neighbors) {
   for (std::size_t k = 0; k < particles.size(); ++k) {
     particles.force[k].setZero();
     particles.torque[k].setZero();
@@ -25,40 +56,76 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
     const double radius_sum = particles.radius[i] + particles.radius[j];
     const double distance_squared = d.squaredNorm();
     ContactRecord& record = records[k];
+    // Bounding spheres first: the radius is the half-width, the largest half-extent.
     if (distance_squared >= radius_sum * radius_sum) {
-      if (record.overlap > 0 || history[k].sliding || !history[k].tangential_force.isZero(0.0)) {
-        history[k] = ContactHistory{}; // the contact has just opened
-        record = ContactRecord{};
-      }
+      open_contact(history[k], record);
       continue;
     }
+    PairProperties pair = properties[k];
+    ContactKinematics kinematics;
+    kinematics.time_step = time_step;
+    Vec3 arm_i, arm_j;                 // lever arms from each centre to the contact point
+    double length_i = 0, length_j = 0; // their lengths, spheres only
+    Vec3 branch;
+    const bool spheres = particles.aspect_ratio[i] == 1.0 && particles.aspect_ratio[j] == 1.0;
+    if (spheres) {
+      // Fast path: the normal is the line of centres and the contact point sits mid-way
+      // through the overlap, so both arms lie along the normal.
+      const double distance = std::sqrt(distance_squared);
+      const Vec3 normal = d * (1.0 / distance);
+      const double overlap = radius_sum - distance;
+      length_i = particles.radius[i] - 0.5 * overlap;
+      length_j = particles.radius[j] - 0.5 * overlap;
+      kinematics.normal = normal;
+      kinematics.overlap = overlap;
+      kinematics.relative_velocity =
+          particles.velocity[j] - particles.velocity[i] + strain_rate.cwiseProduct(d) -
+          (length_j * particles.angular_velocity[j] + length_i * particles.angular_velocity[i]).cross(normal);
+      arm_i = length_i * normal;
+      arm_j = -length_j * normal;
+      branch = distance * normal;
+    } else {
+      const Vec3 guess = history[k].normal.isZero(0.0) ? d : history[k].normal;
+      const OvoidPairGeometry geometry = ovoid_pair_geometry(particles, i, j, d, guess, pair, input, true);
+      pass.newton_iterations += geometry.contact.iterations;
+      pass.n_unconverged += geometry.contact.converged ? 0 : 1;
+      if (!(geometry.contact.overlap > 0)) {
+        open_contact(history[k], record);
+        continue;
+      }
+      kinematics.normal = geometry.contact.normal;
+      kinematics.overlap = geometry.contact.overlap;
+      arm_i = geometry.contact.point;
+      arm_j = geometry.contact.point - d;
+      kinematics.relative_velocity =
+          particles.velocity[j] - particles.velocity[i] + strain_rate.cwiseProduct(d) +
+          particles.angular_velocity[j].cross(arm_j) - particles.angular_velocity[i].cross(arm_i);
+      pair.effective_radius = geometry.hertz_radius;
+      branch = d;
+      history[k].normal = geometry.contact.normal;
+    }
     ++pass.n_touching;
-    const double distance = std::sqrt(distance_squared);
-    const Vec3 normal = d * (1.0 / distance);
-    const double overlap = radius_sum - distance;
-    const double smaller_radius = std::min(particles.radius[i], particles.radius[j]);
-    if (!(overlap <= pass.worst_overlap * smaller_radius)) { // also catches NaN
-      pass.worst_overlap = overlap / smaller_radius;
+    const double overlap = kinematics.overlap;
+    const double smaller = std::min(half_height(particles.radius[i], particles.aspect_ratio[i]),
+                                    half_height(particles.radius[j], particles.aspect_ratio[j]));
+    if (!(overlap <= pass.worst_overlap * smaller)) { // also catches NaN
+      pass.worst_overlap = overlap / smaller;
       pass.worst_pair = static_cast<std::int64_t>(k);
     }
-    // Lever arms from each centre to the contact point, which sits mid-way through the overlap.
-    const double arm_i = particles.radius[i] - 0.5 * overlap;
-    const double arm_j = particles.radius[j] - 0.5 * overlap;
-    ContactKinematics kinematics;
-    kinematics.normal = normal;
-    kinematics.overlap = overlap;
-    kinematics.relative_velocity =
-        particles.velocity[j] - particles.velocity[i] + strain_rate.cwiseProduct(d) -
-        (arm_j * particles.angular_velocity[j] + arm_i * particles.angular_velocity[i]).cross(normal);
-    kinematics.time_step = time_step;
-    const ContactForce result = hertz_mindlin_force(constants, properties[k], kinematics, history[k]);
-    const Vec3 moment_direction = normal.cross(result.force_on_i);
+    const ContactForce result = hertz_mindlin_force(constants, pair, kinematics, history[k]);
     particles.force[i] += result.force_on_i;
     particles.force[j] -= result.force_on_i;
-    particles.torque[i] += arm_i * moment_direction;
-    particles.torque[j] += arm_j * moment_direction;
-    record.normal = normal;
-    record.distance = distance;
+    if (spheres) {
+      const Vec3 moment_direction = kinematics.normal.cross(result.force_on_i);
+      particles.torque[i] += length_i * moment_direction;
+      particles.torque[j] += length_j * moment_direction;
+    } else {
+      particles.torque[i] += arm_i.cross(result.force_on_i);
+      particles.torque[j] -= arm_j.cross(result.force_on_i);
+    }
+    record.normal = kinematics.normal;
+    record.branch = branch;
+    record.point = arm_i;
     record.overlap = overlap;
     record.force_on_i = result.force_on_i;
     record.normal_force = result.normal_force;

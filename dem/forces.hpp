@@ -1,24 +1,46 @@
 #pragma once
-// The force pass: every candidate pair through the narrow phase (spheres) and
-// the contact law, forces and torques summed on both particles in pair order
-// (partner id ascending), per-pair results kept for stress and output.
+// The force pass: every candidate pair through the narrow phase (the sphere fast path, or the
+// ovoid contact of dem/ovoid_contact.hpp when either particle is an ovoid) and the contact
+// law, forces and torques summed on both particles in pair order (partner id ascending),
+// per-pair results kept for stress and output.
 
 #include "common/cell.hpp"
+#include "dem/config.hpp"
 #include "dem/contact_law.hpp"
 #include "dem/neighbors.hpp"
+#include "dem/particle_shape.hpp"
 #include "dem/particles.hpp"
 
 namespace aniso::dem {
 
 struct ForcePass {
   std::int64_t n_touching = 0;
-  double worst_overlap = 0;     ///< largest overlap / smaller radius (NaN if an overlap was NaN)
-  std::int64_t worst_pair = -1; ///< index into NeighborList::pairs() of that pair
+  double worst_overlap = 0;           ///< largest overlap / smaller half-height (NaN if an overlap was NaN)
+  std::int64_t worst_pair = -1;       ///< index into NeighborList::pairs() of that pair
+  std::int64_t newton_iterations = 0; ///< ovoid narrow phase, summed over pairs
+  std::int64_t n_unconverged = 0;     ///< ovoid pairs whose Newton iteration hit its limit
+};
+
+/// What the force law needs from the geometry of one shape pair.
+struct ContactInput {
+  const ShapeTable* shapes = nullptr;
+  HertzRadius hertz_radius = HertzRadius::halfwidth;
 };
 
 /// Zeroes forces and torques, then adds every contact's. `strain_rate` is the
 /// cell's diagonal rate, which adds the affine part to relative velocities.
 ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
-                                 const ContactMaterial& material, double time_step, NeighborList& neighbors);
+                                 const ContactMaterial& material, double time_step, const ContactInput& input,
+                                 NeighborList& neighbors);
+
+/// Geometry of the pair (i, j) with centre separation d (minimum image), for an ovoid on either
+/// side; `guess` is the normal to start from. The Hertz radius follows `input.hertz_radius`.
+struct OvoidPairGeometry {
+  ContactGeometry contact;
+  double hertz_radius = 0;
+};
+OvoidPairGeometry ovoid_pair_geometry(const Particles& particles, std::uint32_t i, std::uint32_t j,
+                                      const Vec3& d, const Vec3& guess, const PairProperties& properties,
+                                      const ContactInput& input, bool stop_if_separated);
 
 } // namespace aniso::dem

@@ -79,7 +79,7 @@ std::vector<HistoryRecord> Halo::migrate(Particles& particles, const PeriodicCel
   const auto& history = neighbors.history();
   for (std::size_t c = 0; c < pairs.size(); ++c) {
     const ContactHistory& h = history[c];
-    if (h.tangential_force.isZero(0.0) && !h.sliding) continue;
+    if (h.tangential_force.isZero(0.0) && !h.sliding && h.normal.isZero(0.0)) continue;
     for (const std::uint32_t k : {pairs[c].i, pairs[c].j}) {
       if (k < n_owned && destination[k] != rank) {
         outgoing_history[static_cast<std::size_t>(destination[k])].push_back(
@@ -103,25 +103,14 @@ std::vector<HistoryRecord> Halo::migrate(Particles& particles, const PeriodicCel
       out.put(record.id_j);
       put_vec3(out, record.history.tangential_force);
       out.put(static_cast<std::uint8_t>(record.history.sliding ? 1 : 0));
+      put_vec3(out, record.history.normal);
     }
   }
   // Keep the staying particles in their order, then append the arrivals in rank order.
   std::size_t kept = 0;
   for (std::size_t k = 0; k < n_owned; ++k) {
     if (destination[k] != rank) continue;
-    if (kept != k) {
-      particles.id[kept] = particles.id[k];
-      particles.radius[kept] = particles.radius[k];
-      particles.aspect_ratio[kept] = particles.aspect_ratio[k];
-      particles.mass[kept] = particles.mass[k];
-      particles.inertia[kept] = particles.inertia[k];
-      particles.position[kept] = particles.position[k];
-      particles.orientation[kept] = particles.orientation[k];
-      particles.velocity[kept] = particles.velocity[k];
-      particles.angular_velocity[kept] = particles.angular_velocity[k];
-      particles.force[kept] = particles.force[k];
-      particles.torque[kept] = particles.torque[k];
-    }
+    if (kept != k) particles.move(kept, k);
     ++kept;
   }
   particles.n_owned = kept;
@@ -141,6 +130,7 @@ std::vector<HistoryRecord> Halo::migrate(Particles& particles, const PeriodicCel
       record.id_j = in.get<std::uint64_t>();
       record.history.tangential_force = get_vec3(in);
       record.history.sliding = in.get<std::uint8_t>() != 0;
+      record.history.normal = get_vec3(in);
       arrived.push_back(record);
     }
   }

@@ -39,6 +39,10 @@ const std::vector<HistoryColumn>& history_columns() {
       {"inertial_number", units::none, "|strain rate 11| D50 sqrt(density / p)"},
       {"kinetic_elastic_ratio", units::none, "kinetic energy / elastic contact energy"},
       {"servo_error", units::none, "(p - p_target)/p_target"},
+      {"axis_orientation_11", units::none,
+       "mean e1^2 of the particle axes e (ovoids; 1/3 for spheres, whose axis is undefined)"},
+      {"axis_orientation_22", units::none, "mean e2^2 of the particle axes"},
+      {"axis_orientation_33", units::none, "mean e3^2 of the particle axes"},
   };
   return columns;
 }
@@ -74,7 +78,7 @@ void History::write(const std::string& folder, const h5::Provenance& provenance)
     {
       h5::File file = h5::File::create(atomic.temp_path());
       file.write_attribute("schema", std::string_view("aniso-history"));
-      file.write_attribute("schema_version", std::int64_t{1});
+      file.write_attribute("schema_version", std::int64_t{2});
       h5::Group group = file.create_group("history");
       for (std::size_t c = 0; c < names.size(); ++c) {
         group.write_dataset<double>(names[c].name, columns_[c], {columns_[c].size()}, names[c].unit,

@@ -1,18 +1,27 @@
 #include "dem/integrator.hpp"
 
 #include "common/error.hpp"
+#include "dem/particle_shape.hpp"
+#include "dem/rotation.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace aniso::dem {
 
 void kick(Particles& particles, double dt) {
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     particles.velocity[k] += (dt / particles.mass[k]) * particles.force[k];
-    particles.angular_velocity[k] += particles.torque[k].cwiseQuotient(particles.inertia[k]) * dt;
+    if (particles.aspect_ratio[k] == 1.0) {
+      particles.angular_velocity[k] += particles.torque[k].cwiseQuotient(particles.inertia[k]) * dt;
+    } else {
+      const Vec3 axis = particles.orientation[k] * Vec3::UnitZ();
+      particles.angular_velocity[k] +=
+          dt * inverse_inertia_times(particles.inertia[k], axis, particles.torque[k]);
+    }
   }
 }
 
@@ -24,11 +33,16 @@ void drift(Particles& particles, PeriodicCell& cell, const Vec3& strain_rate, do
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     const Vec3 moved = (particles.position[k] + dt * particles.velocity[k]).cwiseProduct(scale);
     particles.position[k] = cell.wrap_nearby(moved);
+    if (particles.aspect_ratio[k] != 1.0) {
+      free_rotation(particles.orientation[k], particles.angular_velocity[k], particles.inertia[k], dt);
+    }
   }
 }
 
 double critical_time_step(const Particles& particles, double density, const ContactMaterial& material) {
-  const double smallest = *std::min_element(particles.radius.begin(), particles.radius.end());
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < particles.size(); ++k)
+    smallest = std::min(smallest, half_height(particles.radius[k], particles.aspect_ratio[k]));
   return rayleigh_time_step(smallest, density, material);
 }
 

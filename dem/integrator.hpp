@@ -8,14 +8,18 @@
 
 namespace aniso::dem {
 
-/// v += F/m * dt, omega += T/I * dt (spheres; the inertia is isotropic).
+/// v += F/m * dt, omega += I_world^-1 T * dt (the inertia is isotropic for spheres and
+/// axisymmetric for ovoids, so I_world^-1 needs only the particle axis).
 void kick(Particles& particles, double dt);
 
 /// Moves particles by their fluctuating velocity, then strains the cell by
 /// `strain_rate` over dt and maps every position affinely with it; wraps into the cell.
+/// Ovoids also turn by their exact torque-free rotation over dt; a sphere's orientation
+/// carries no information and is left as it is.
 void drift(Particles& particles, PeriodicCell& cell, const Vec3& strain_rate, double dt);
 
-/// Rayleigh critical step of the smallest particle [s].
+/// Rayleigh critical step of the smallest particle [s], taken over its smallest half-extent
+/// (the half-height alpha a of an ovoid) so that flat particles get a safe step.
 double critical_time_step(const Particles& particles, double density, const ContactMaterial& material);
 
 /// Checks a requested step against the critical one; throws NumericalError naming both if above.

@@ -40,7 +40,7 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     if (records[k].overlap <= 0 || pairs[k].i >= p.n_owned) continue; // written by the owner of the lower id
     const auto i = pairs[k].i, j = pairs[k].j;
-    const Vec3 branch = records[k].distance * records[k].normal;
+    const Vec3& branch = records[k].branch;
     const Vec3 raw = p.position[j] - p.position[i];
     Vec3i shift;
     for (int a = 0; a < 3; ++a)
@@ -48,8 +48,7 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
     c.contacts.particles.push_back({p.id[i], p.id[j]});
     c.contacts.image_shift.push_back(shift);
     c.contacts.normal.push_back(records[k].normal);
-    c.contacts.point.push_back(
-        simulation.cell().wrap(p.position[i] + (p.radius[i] - 0.5 * records[k].overlap) * records[k].normal));
+    c.contacts.point.push_back(simulation.cell().wrap(p.position[i] + records[k].point));
     c.contacts.overlap.push_back(records[k].overlap);
     c.contacts.force.push_back(records[k].force_on_i);
     c.contacts.tangential_force.push_back(history[k].tangential_force);
@@ -68,6 +67,8 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
       {"servo_max_rate", s.servo.max_rate, units::per_second},
       {"servo_integral_intervals", s.servo.integral_intervals, units::none},
       {"explosion_overlap", s.explosion_overlap, units::none},
+      {"ovoid_splice_angle", s.splice_angle, units::radian},
+      {"hertz_radius_curvature", s.hertz_radius == HertzRadius::curvature ? 1.0 : 0.0, units::none},
   };
   c.rng_state = rng_state;
   return c;
@@ -88,6 +89,10 @@ SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, co
   s.servo.max_rate = get("servo_max_rate");
   s.servo.integral_intervals = get("servo_integral_intervals");
   s.explosion_overlap = get("explosion_overlap");
+  // Checkpoints written before ovoids landed hold spheres only: the defaults are exact for them.
+  if (h5::has_parameter(checkpoint, "ovoid_splice_angle")) s.splice_angle = get("ovoid_splice_angle");
+  if (h5::has_parameter(checkpoint, "hertz_radius_curvature") && get("hertz_radius_curvature") != 0.0)
+    s.hertz_radius = HertzRadius::curvature;
   return s;
 }
 

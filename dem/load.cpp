@@ -50,7 +50,10 @@ std::vector<double> history_row(const Simulation& simulation, const DemConfig& c
           static_cast<double>(m.n_contacts),
           inertial,
           m.elastic_energy > 0 ? m.kinetic_energy / m.elastic_energy : 0.0,
-          (m.mean_stress - config.load.mean_stress) / config.load.mean_stress};
+          (m.mean_stress - config.load.mean_stress) / config.load.mean_stress,
+          m.axis_orientation(0, 0),
+          m.axis_orientation(1, 1),
+          m.axis_orientation(2, 2)};
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 
 #include "common/exact_sum.hpp"
 #include "common/exchange.hpp"
+#include "dem/rotation.hpp"
 
 #include <array>
 #include <cmath>
@@ -24,7 +25,7 @@ Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const 
   const auto& pairs = neighbors.pairs();
   for (std::size_t c = 0; c < records.size(); ++c) {
     if (!counted_here(particles, pairs[c], records[c])) continue;
-    const Vec3 branch = records[c].distance * records[c].normal;
+    const Vec3& branch = records[c].branch;
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         sums[static_cast<std::size_t>(3 * a + b)].add(branch[a] * records[c].force_on_i[b]);
@@ -70,8 +71,26 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
   }
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     energy[0].add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
-    energy[0].add(0.5 * particles.angular_velocity[k].dot(
-                            particles.inertia[k].cwiseProduct(particles.angular_velocity[k])));
+    energy[0].add(
+        rotational_energy(particles.inertia[k], particles.orientation[k], particles.angular_velocity[k]));
+  }
+  // Axis orientation tensor of the ovoids: 6 components and the count, summed exactly.
+  std::array<ExactSum, 7> axes;
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
+    if (particles.aspect_ratio[k] == 1.0) continue;
+    const Vec3 e = particles.orientation[k] * Vec3::UnitZ();
+    const std::array<double, 6> components{e.x() * e.x(), e.y() * e.y(), e.z() * e.z(),
+                                           e.y() * e.z(), e.x() * e.z(), e.x() * e.y()};
+    for (std::size_t c = 0; c < components.size(); ++c)
+      axes[c].add(components[c]);
+    axes[6].add(1.0);
+  }
+  const std::vector<ExactSum> axis_sums = comm.sum_exact(std::span<const ExactSum>(axes));
+  if (const double n_ovoids = axis_sums[6].value(); n_ovoids > 0) {
+    Eigen::Matrix<double, 6, 1> voigt;
+    for (int c = 0; c < 6; ++c)
+      voigt[c] = axis_sums[static_cast<std::size_t>(c)].value() / n_ovoids;
+    m.axis_orientation = from_voigt(voigt);
   }
   const std::vector<ExactSum> energies = comm.sum_exact(std::span<const ExactSum>(energy));
   m.kinetic_energy = energies[0].value();

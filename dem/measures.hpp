@@ -29,6 +29,8 @@ struct StateMeasures {
   std::int64_t n_rattlers = 0;
   double kinetic_energy = 0; ///< fluctuating translational plus rotational [J]
   double elastic_energy = 0; ///< Hertz normal plus tangential spring energy [J]
+  /// Mean e (x) e of the ovoids' axes e; I/3 when there are no ovoids (a sphere has no axis).
+  Mat3 axis_orientation = Mat3::Identity() / 3.0;
 };
 
 /// Collective; `n_particles` and `solid_volume` are global.

@@ -22,7 +22,8 @@ struct Pair {
 /// What the last force evaluation found for one pair (overlap <= 0: not touching).
 struct ContactRecord {
   Vec3 normal = Vec3::Zero();      ///< unit, from i to j
-  double distance = 0;             ///< centre distance [m]
+  Vec3 branch = Vec3::Zero();      ///< centre of j minus centre of i (minimum image) [m]
+  Vec3 point = Vec3::Zero();       ///< contact point relative to the centre of i [m]
   double overlap = 0;              ///< [m]
   Vec3 force_on_i = Vec3::Zero();  ///< [N]
   double normal_force = 0;         ///< elastic normal force [N]

@@ -13,7 +13,7 @@ namespace aniso::dem {
 
 struct Particles {
   std::vector<std::uint64_t> id;
-  std::vector<double> radius;         ///< half the mid-plane diameter [m]
+  std::vector<double> radius;         ///< half the mid-plane diameter, a [m]
   std::vector<double> aspect_ratio;   ///< 1 for spheres
   std::vector<double> mass;           ///< [kg]
   std::vector<Vec3> inertia;          ///< principal moments, body frame [kg m^2]
@@ -32,14 +32,18 @@ struct Particles {
   void resize(std::size_t n);
   /// Keeps the first n entries (used to drop ghosts).
   void truncate(std::size_t n);
-  /// Appends one particle at rest with identity orientation.
-  void add(std::uint64_t particle_id, double particle_radius, double particle_aspect_ratio, double density,
-           const Vec3& particle_position);
-  /// Solid volume of the owned particles [m^3].
-  [[nodiscard]] double solid_volume() const;
-};
+  /// Appends particle k of `source` (all its fields).
+  void append(const Particles& source, std::size_t k);
+  /// Overwrites entry `to` with entry `from` (compacting after migration).
+  void move(std::size_t to, std::size_t from);
+  /// Appends one particle at rest with the given orientation (body to world); mass and
+  /// inertia follow from the shape (ovoids: splice angle beta, assembly-wide).
+  void add(std::uint64_t particle_id, double particle_radius, double particle_aspect_ratio,
+           double splice_angle, double density, const Vec3& particle_position,
+           const Quat& particle_orientation = Quat::Identity());
 
-/// Volume of a particle of this radius and aspect ratio (sphere for aspect ratio 1).
-double particle_volume(double radius, double aspect_ratio);
+private:
+  void resize_arrays(std::size_t n);
+};
 
 } // namespace aniso::dem

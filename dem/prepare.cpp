@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
+#include "dem/rotation.hpp"
 #include "dem/settings.hpp"
 #include "dem/size_distribution.hpp"
 
@@ -23,8 +24,8 @@ double kinetic_energy(const Simulation& simulation) {
   ExactSum energy;
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     energy.add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
-    energy.add(0.5 * particles.angular_velocity[k].dot(
-                         particles.inertia[k].cwiseProduct(particles.angular_velocity[k])));
+    energy.add(
+        rotational_energy(particles.inertia[k], particles.orientation[k], particles.angular_velocity[k]));
   }
   return simulation.comm().sum_exact(energy).value();
 }
@@ -137,16 +138,29 @@ void consolidate(Simulation& simulation, const DemConfig& config, double rate, c
   }
 }
 
+// A uniformly distributed rotation: a normalised vector of four standard normals.
+Quat random_orientation(RandomStream& stream) {
+  for (;;) {
+    const double w = stream.normal(), x = stream.normal(), y = stream.normal(), z = stream.normal();
+    const Quat q(w, x, y, z); // drawn in sequence: argument evaluation order is unspecified
+    const double norm = q.norm();
+    if (norm > 1e-6) return Quat(q.coeffs() / norm);
+  }
+}
+
 } // namespace
 
 Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement,
                            const mpi::Comm& comm) {
   const auto& pc = config.particles;
+  RandomStream orientations(config.seed, 3);
   const Grading grading{pc.diameter_min, pc.d50, pc.diameter_max};
   const std::vector<double> diameters = sample_diameters(grading, static_cast<std::size_t>(pc.count), sizes);
+  // The sparse start places bounding spheres (radius = half-width), so their volume sets the
+  // cell: for ovoids the particles themselves fill less (about alpha times as much).
   double solid = 0;
   for (double d : diameters)
-    solid += particle_volume(0.5 * d, pc.aspect_ratio);
+    solid += particle_volume(0.5 * d, 1.0, pc.splice_angle);
   const auto& aspect = config.prepare.cell_aspect;
   const double volume = solid / config.prepare.initial_solid_fraction;
   const double unit = std::cbrt(volume / (aspect[0] * aspect[1] * aspect[2]));
@@ -156,6 +170,8 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
   Particles particles;
   for (std::size_t k = 0; k < diameters.size(); ++k) {
     const double radius = 0.5 * diameters[k];
+    // Ovoids get uniformly random orientations; spheres keep the identity (it carries nothing).
+    const Quat orientation = pc.aspect_ratio == 1.0 ? Quat::Identity() : random_orientation(orientations);
     bool placed = false;
     for (int attempt = 0; attempt < 100000 && !placed; ++attempt) {
       const Vec3 x(placement.uniform(0, lengths[0]), placement.uniform(0, lengths[1]),
@@ -165,7 +181,7 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
         const double reach = radius + particles.radius[other];
         placed = cell.minimum_image(x - particles.position[other]).squaredNorm() > reach * reach;
       }
-      if (placed) particles.add(k, radius, pc.aspect_ratio, pc.density, x);
+      if (placed) particles.add(k, radius, pc.aspect_ratio, pc.splice_angle, pc.density, x, orientation);
     }
     if (!placed) {
       throw ConvergenceError(fmt::format("could not place particle {} of {} without overlap: lower "

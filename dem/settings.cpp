@@ -13,7 +13,10 @@ SimulationSettings settings_from_config(const DemConfig& config, double smallest
   s.material.friction = config.material.friction;
   s.material.damping_ratio = config.integration.damping;
   s.density = config.particles.density;
-  const double critical = rayleigh_time_step(0.5 * smallest_diameter, s.density, s.material);
+  s.splice_angle = config.particles.splice_angle;
+  s.hertz_radius = config.material.hertz_radius;
+  const double critical = rayleigh_time_step(
+      half_height(0.5 * smallest_diameter, config.particles.aspect_ratio), s.density, s.material);
   s.time_step = config.integration.time_step > 0 ? config.integration.time_step
                                                  : config.integration.time_step_fraction * critical;
   require_stable_time_step(s.time_step, critical);

@@ -6,7 +6,8 @@
 
 namespace aniso::dem {
 
-/// Material, time step (from the Rayleigh step of the smallest diameter), skin, servo.
+/// Material, shape, time step (from the Rayleigh step of the smallest particle's half-height),
+/// skin, servo.
 SimulationSettings settings_from_config(const DemConfig& config, double smallest_diameter);
 
 /// Strain rate for an inertial number at a mean stress: rate = I / (D50 sqrt(rho / p)).

@@ -15,15 +15,17 @@ namespace aniso::dem {
 
 Simulation::Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings,
                        double time, std::int64_t step, bool forces_valid, const mpi::Comm& comm)
-    : particles_(std::move(particles)), cell_(control.lengths, control.reference_lengths), control_(control),
-      settings_(settings), neighbors_(settings.skin), domain_(comm), time_(time), step_(step) {
+    : particles_(std::move(particles)), shapes_(settings.splice_angle),
+      cell_(control.lengths, control.reference_lengths), control_(control), settings_(settings),
+      neighbors_(settings.skin), domain_(comm), time_(time), step_(step) {
   // Every rank holds every particle here, so these are global without communication.
   require_stable_time_step(settings_.time_step,
                            critical_time_step(particles_, settings_.density, settings_.material));
   n_particles_ = static_cast<std::int64_t>(particles_.size());
   ExactSum solid;
   for (std::size_t k = 0; k < particles_.size(); ++k) {
-    solid.add(particle_volume(particles_.radius[k], particles_.aspect_ratio[k]));
+    solid.add(particle_volume(particles_.radius[k], particles_.aspect_ratio[k], settings_.splice_angle));
+    shapes_.add(particles_.aspect_ratio[k]);
   }
   solid_volume_ = solid.value();
   const double max_radius = *std::max_element(particles_.radius.begin(), particles_.radius.end());
@@ -34,17 +36,7 @@ Simulation::Simulation(Particles particles, const h5::CellState& control, const 
     Particles dealt;
     for (std::size_t k = static_cast<std::size_t>(comm.rank()); k < particles_.size();
          k += static_cast<std::size_t>(comm.size())) {
-      dealt.id.push_back(particles_.id[k]);
-      dealt.radius.push_back(particles_.radius[k]);
-      dealt.aspect_ratio.push_back(particles_.aspect_ratio[k]);
-      dealt.mass.push_back(particles_.mass[k]);
-      dealt.inertia.push_back(particles_.inertia[k]);
-      dealt.position.push_back(particles_.position[k]);
-      dealt.orientation.push_back(particles_.orientation[k]);
-      dealt.velocity.push_back(particles_.velocity[k]);
-      dealt.angular_velocity.push_back(particles_.angular_velocity[k]);
-      dealt.force.push_back(particles_.force[k]);
-      dealt.torque.push_back(particles_.torque[k]);
+      dealt.append(particles_, k);
     }
     dealt.n_owned = dealt.size();
     particles_ = std::move(dealt);
@@ -68,7 +60,7 @@ void Simulation::rebuild_decomposition() {
 
 void Simulation::compute_forces() {
   const ForcePass pass = compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material,
-                                                settings_.time_step, neighbors_);
+                                                settings_.time_step, contact_input(), neighbors_);
   // Explosion guard: an overlap this large means the step or the loading rate is far too large.
   // Every rank must stop together, so the verdict is shared before anyone throws.
   const bool exploded = !(pass.worst_overlap <= settings_.explosion_overlap);
@@ -135,12 +127,18 @@ void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::st
                       contacts.particles[c][0], contacts.particles[c][1]));
     }
     auto& record = neighbors_.records()[static_cast<std::size_t>(k)];
-    const double radius_i = particles_.radius[i], radius_j = particles_.radius[j];
+    const Vec3& lengths = cell_.lengths();
     record.normal = contacts.normal[c];
     record.overlap = contacts.overlap[c];
-    record.distance = radius_i + radius_j - contacts.overlap[c];
+    // The same arithmetic as the force pass, so that the restored stress has the same bits.
+    const Vec3 d =
+        PeriodicCell::minimum_image_of_wrapped(particles_.position[j] - particles_.position[i], lengths);
+    const bool spheres = particles_.aspect_ratio[i] == 1.0 && particles_.aspect_ratio[j] == 1.0;
+    record.branch = spheres ? d.norm() * (d * (1.0 / d.norm())) : d;
+    record.point =
+        PeriodicCell::minimum_image_of_wrapped(contacts.point[c] - particles_.position[i], lengths);
     record.force_on_i = contacts.force[c];
-    const double effective_radius = radius_i * radius_j / (radius_i + radius_j);
+    const double effective_radius = restored_hertz_radius(i, j, record);
     record.normal_force =
         hertz_normal_force(contact_modulus(settings_.material), effective_radius, record.overlap);
     record.tangential_stiffness =
@@ -148,7 +146,21 @@ void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::st
     auto& history = neighbors_.history()[static_cast<std::size_t>(k)];
     history.tangential_force = contacts.tangential_force[c];
     history.sliding = contacts.sliding[c] != 0;
+    if (!spheres) history.normal = contacts.normal[c];
   }
+}
+
+double Simulation::restored_hertz_radius(std::uint32_t i, std::uint32_t j,
+                                         const ContactRecord& record) const {
+  const double radius_i = particles_.radius[i], radius_j = particles_.radius[j];
+  const double halfwidth = radius_i * radius_j / (radius_i + radius_j);
+  const bool spheres = particles_.aspect_ratio[i] == 1.0 && particles_.aspect_ratio[j] == 1.0;
+  if (spheres || settings_.hertz_radius == HertzRadius::halfwidth) return halfwidth;
+  PairProperties properties;
+  properties.effective_radius = halfwidth;
+  return ovoid_pair_geometry(particles_, i, j, record.branch, record.normal, properties, contact_input(),
+                             false)
+      .hertz_radius;
 }
 
 double Simulation::servo_error() const {

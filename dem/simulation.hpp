@@ -6,11 +6,14 @@
 #include "common/cell.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "dem/cell_control.hpp"
+#include "dem/config.hpp"
 #include "dem/contact_law.hpp"
 #include "dem/domain.hpp"
+#include "dem/forces.hpp"
 #include "dem/halo.hpp"
 #include "dem/measures.hpp"
 #include "dem/neighbors.hpp"
+#include "dem/particle_shape.hpp"
 #include "dem/particles.hpp"
 
 #include <cstdint>
@@ -26,6 +29,8 @@ struct SimulationSettings {
   std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
   ServoSettings servo;
   double explosion_overlap = 0.05; ///< stop when an overlap exceeds this fraction of the smaller radius
+  double splice_angle = 0.7853981633974483; ///< ovoid splice angle beta [rad], assembly-wide
+  HertzRadius hertz_radius = HertzRadius::halfwidth;
 };
 
 class Simulation {
@@ -76,12 +81,19 @@ public:
   /// Captures the cell state (lengths, rates, controller) for a checkpoint.
   [[nodiscard]] h5::CellState cell_state() const;
 
+  /// The shapes of this assembly's particles.
+  [[nodiscard]] const ShapeTable& shapes() const { return shapes_; }
+  [[nodiscard]] ContactInput contact_input() const { return {&shapes_, settings_.hertz_radius}; }
+
 private:
   void compute_forces();
+  [[nodiscard]] double restored_hertz_radius(std::uint32_t i, std::uint32_t j,
+                                             const ContactRecord& record) const;
   void update_control();
   void rebuild_decomposition();
 
   Particles particles_;
+  ShapeTable shapes_;
   PeriodicCell cell_;
   h5::CellState control_;
   SimulationSettings settings_;

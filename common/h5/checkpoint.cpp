@@ -731,6 +731,12 @@ Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm) {
   return checkpoint;
 }
 
+bool has_parameter(const Checkpoint& checkpoint, const std::string& name) {
+  for (const Parameter& candidate : checkpoint.parameters)
+    if (candidate.name == name) return true;
+  return false;
+}
+
 double parameter(const Checkpoint& checkpoint, const std::string& name, const std::string& path) {
   for (const Parameter& candidate : checkpoint.parameters)
     if (candidate.name == name) return candidate.value;

@@ -94,6 +94,9 @@ void write_checkpoint(const std::string& path, const Checkpoint& local, const Pr
 /// the file and the dataset on any problem (version, missing dataset, shape, non-finite value).
 Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm);
 
+/// True if the checkpoint holds a parameter of this name.
+bool has_parameter(const Checkpoint& checkpoint, const std::string& name);
+
 /// Value of a named parameter; throws FileError naming the file if absent.
 double parameter(const Checkpoint& checkpoint, const std::string& name, const std::string& path);
 

@@ -73,8 +73,10 @@ TEST(Failures, HeadOnImpactStopsWithOverlapError) {
   Particles particles;
   const double radius = 0.1e-3;
   const Vec3 lengths = Vec3::Constant(1.0e-3);
-  particles.add(0, radius, 1.0, config.particles.density, Vec3(0.5e-3 - radius - 0.5e-6, 0.5e-3, 0.5e-3));
-  particles.add(1, radius, 1.0, config.particles.density, Vec3(0.5e-3 + radius + 0.5e-6, 0.5e-3, 0.5e-3));
+  particles.add(0, radius, 1.0, config.particles.splice_angle, config.particles.density,
+                Vec3(0.5e-3 - radius - 0.5e-6, 0.5e-3, 0.5e-3));
+  particles.add(1, radius, 1.0, config.particles.splice_angle, config.particles.density,
+                Vec3(0.5e-3 + radius + 0.5e-6, 0.5e-3, 0.5e-3));
   particles.velocity[0] = Vec3(500.0, 0, 0);
   particles.velocity[1] = Vec3(-500.0, 0, 0);
   h5::CellState state;

@@ -53,7 +53,7 @@ Particles random_particles(const PeriodicCell& cell, std::size_t count, std::uin
   for (std::size_t k = 0; k < count; ++k) {
     const double radius = k == 0 ? kRadiusMax : stream.uniform(kRadiusMin, kRadiusMax);
     const Vec3 x(stream.uniform(0, lengths[0]), stream.uniform(0, lengths[1]), stream.uniform(0, lengths[2]));
-    particles.add(ids[k], radius, 1.0, kDensity, x);
+    particles.add(ids[k], radius, 1.0, 0.7853981633974483, kDensity, x);
   }
   return particles;
 }
@@ -136,8 +136,8 @@ TEST(NeighborList, FindsPairAcrossEveryFace) {
       Vec3 a = 0.5 * cell.lengths(), b = 0.5 * cell.lengths();
       a[axis] = 0.25 * factor * reach;
       b[axis] = cell.lengths()[axis] - 0.75 * factor * reach;
-      particles.add(0, kRadiusMax, 1.0, kDensity, a);
-      particles.add(1, kRadiusMax, 1.0, kDensity, b);
+      particles.add(0, kRadiusMax, 1.0, 0.7853981633974483, kDensity, a);
+      particles.add(1, kRadiusMax, 1.0, 0.7853981633974483, kDensity, b);
       NeighborList list(kSkin);
       list.build(particles, cell);
       EXPECT_EQ(list.pairs().size(), factor < 1 ? 1u : 0u) << "axis " << axis << ", factor " << factor;

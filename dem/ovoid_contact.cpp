@@ -1,0 +1,208 @@
+#include "dem/ovoid_contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace aniso::dem {
+
+Support support(const ConvexBody& body, const Vec3& n) {
+  Support s;
+  const Mat3 tangent = Mat3::Identity() - n * n.transpose();
+  const double axial = n.dot(body.axis);
+  if (axial >= body.cos_splice || axial <= -body.cos_splice) {
+    // A cap: the sphere of radius R_c about the point z_c on the axis, on the side of n.
+    const double height = axial >= 0 ? body.cap_centre_height : -body.cap_centre_height;
+    s.point = height * body.axis + body.cap_radius * n;
+    s.value = height * axial + body.cap_radius;
+    s.radii = body.cap_radius * tangent;
+    return s;
+  }
+  // The band: the tube-centre circle (radius rho0, in the mid-plane) offset by r_t. The
+  // circle's support point lies along the in-plane part of n; its Hessian rho0/|n_plane| u u^T
+  // acts along the hoop direction u only.
+  const Vec3 in_plane = n - axial * body.axis;
+  const double width = in_plane.norm(); // > sin(beta) > 0 on the band
+  const Vec3 radial = in_plane / width;
+  const Vec3 hoop = body.axis.cross(radial);
+  s.point = body.tube_centre_radius * radial + body.tube_radius * n;
+  s.value = body.tube_centre_radius * width + body.tube_radius;
+  s.radii = body.tube_radius * tangent + (body.tube_centre_radius / width) * (hoop * hoop.transpose());
+  return s;
+}
+
+double support_value(const ConvexBody& body, const Vec3& n) {
+  const double axial = n.dot(body.axis);
+  if (axial >= body.cos_splice || axial <= -body.cos_splice) {
+    return (axial >= 0 ? body.cap_centre_height : -body.cap_centre_height) * axial + body.cap_radius;
+  }
+  return body.tube_centre_radius * (n - axial * body.axis).norm() + body.tube_radius;
+}
+
+namespace {
+
+struct Evaluation {
+  double gap_function = 0; ///< phi(n) = h_A(n) + h_B(-n) - d.n
+  Support a;
+  Support b; ///< support of B at -n
+};
+
+Evaluation evaluate(const ConvexBody& a, const ConvexBody& b, const Vec3& d, const Vec3& n) {
+  Evaluation e;
+  e.a = support(a, n);
+  e.b = support(b, -n);
+  e.gap_function = e.a.value + e.b.value - d.dot(n);
+  return e;
+}
+
+// An orthonormal pair spanning the plane normal to the unit vector n.
+std::array<Vec3, 2> tangent_basis(const Vec3& n) {
+  const Vec3 helper =
+      std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
+  const Vec3 t1 = n.cross(helper).normalized();
+  return {t1, n.cross(t1)};
+}
+
+// Relative principal radii of curvature at the contact: the two surfaces' curvature tensors
+// (inverses of their radius tensors on the tangent plane) add.
+Vec3 relative_principal_radii(const Mat3& radii_a, const Mat3& radii_b, const std::array<Vec3, 2>& t) {
+  Eigen::Matrix2d curvature = Eigen::Matrix2d::Zero();
+  for (const Mat3* radii : {&radii_a, &radii_b}) {
+    Eigen::Matrix2d r;
+    for (int p = 0; p < 2; ++p)
+      for (int q = 0; q < 2; ++q)
+        r(p, q) = t[static_cast<std::size_t>(p)].dot(*radii * t[static_cast<std::size_t>(q)]);
+    curvature += r.inverse();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(curvature);
+  const Eigen::Vector2d k = solver.eigenvalues(); // ascending curvatures
+  return {1.0 / k[1], 1.0 / k[0], 0.0};
+}
+
+} // namespace
+
+ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const Vec3& d, const Vec3& guess,
+                               bool stop_if_separated, bool with_curvature) {
+  constexpr int max_iterations = 60;
+  constexpr int max_halvings = 40;
+  const double scale = a.bounding_radius + b.bounding_radius;
+  ContactGeometry result;
+  Vec3 n = guess.normalized();
+  if (stop_if_separated) {
+    // phi(n) < 0 for any n proves the bodies apart (a separating direction).
+    const double gap_function = support_value(a, n) + support_value(b, -n) - d.dot(n);
+    if (gap_function < 0) {
+      result.overlap = gap_function;
+      result.normal = n;
+      result.converged = true;
+      return result;
+    }
+  }
+  Evaluation current = evaluate(a, b, d, n);
+  std::array<Vec3, 2> t = tangent_basis(n);
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    result.iterations = iteration + 1;
+    // Riemannian gradient and Hessian of phi on the unit sphere, in the tangent basis.
+    const Vec3 residual = current.a.point - current.b.point - d;
+    const Eigen::Vector2d gradient(t[0].dot(residual), t[1].dot(residual));
+    const Mat3 radii = current.a.radii + current.b.radii;
+    Eigen::Matrix2d hessian;
+    for (int p = 0; p < 2; ++p)
+      for (int q = 0; q < 2; ++q)
+        hessian(p, q) = t[static_cast<std::size_t>(p)].dot(radii * t[static_cast<std::size_t>(q)]);
+    hessian -= current.gap_function * Eigen::Matrix2d::Identity();
+    if (gradient.norm() <= 1e-15 * scale) {
+      result.converged = true;
+      break;
+    }
+    Eigen::Vector2d step;
+    const Eigen::LLT<Eigen::Matrix2d> llt(hessian);
+    if (llt.info() == Eigen::Success) {
+      step = -llt.solve(gradient);
+    } else {
+      step = -gradient / scale; // not convex here (deep overlap): steepest descent
+    }
+    // Backtracking: accept the first step that lowers phi; a step that cannot lower it any
+    // further means phi is flat to round-off, i.e. converged.
+    bool accepted = false;
+    for (int halving = 0; halving < max_halvings; ++halving) {
+      const Vec3 trial_normal = (n + step[0] * t[0] + step[1] * t[1]).normalized();
+      const Evaluation trial = evaluate(a, b, d, trial_normal);
+      if (trial.gap_function <= current.gap_function) {
+        const double moved = (trial_normal - n).norm();
+        n = trial_normal;
+        current = trial;
+        accepted = true;
+        if (moved <= 1e-15) result.converged = true;
+        break;
+      }
+      step *= 0.5;
+    }
+    if (!accepted) {
+      result.converged = true;
+      break;
+    }
+    t = tangent_basis(n);
+    if (result.converged) break;
+  }
+  result.overlap = current.gap_function;
+  result.normal = n;
+  result.point = 0.5 * (current.a.point + d + current.b.point);
+  if (with_curvature) result.principal_radii = relative_principal_radii(current.a.radii, current.b.radii, t);
+  return result;
+}
+
+namespace {
+
+// Exact Hertz theory for an elliptic contact (Johnson 1985, section 4.2): with relative
+// curvatures A <= B (gap A x^2 + B y^2) and e the eccentricity of the contact ellipse,
+//   B/A = (E(e)/(1 - e^2) - K(e)) / (K(e) - E(e)),
+// and the force-approach law equals a sphere's of radius
+//   R_eq = pi^2 (K - E) / (4 K^3 e^2 A).
+// The table holds R_eq A against log(B/A) (R_eq A = 1/2 for a circle).
+struct EllipticTable {
+  static constexpr int n_points = 1201;
+  static constexpr double max_log_ratio = 12.0; // B/A up to e^12, far past any ovoid contact
+  std::array<double, n_points> radius_times_a{};
+
+  EllipticTable() {
+    radius_times_a[0] = 0.5;
+    for (int k = 1; k < n_points; ++k) {
+      const double target = std::exp(max_log_ratio * k / (n_points - 1));
+      const auto ratio = [](double e) {
+        const double big_k = std::comp_ellint_1(e);
+        const double big_e = std::comp_ellint_2(e);
+        return (big_e / (1.0 - e * e) - big_k) / (big_k - big_e);
+      };
+      double low = 1e-6;
+      double high = 1.0 - 1e-15;
+      for (int bisection = 0; bisection < 200 && high - low > 1e-16; ++bisection) {
+        const double middle = 0.5 * (low + high);
+        (ratio(middle) < target ? low : high) = middle;
+      }
+      const double e = 0.5 * (low + high);
+      const double big_k = std::comp_ellint_1(e);
+      const double big_e = std::comp_ellint_2(e);
+      radius_times_a[static_cast<std::size_t>(k)] =
+          std::numbers::pi * std::numbers::pi * (big_k - big_e) / (4.0 * big_k * big_k * big_k * e * e);
+    }
+  }
+};
+
+} // namespace
+
+double elliptic_hertz_radius(double radius_small, double radius_large) {
+  static const EllipticTable table;              // immutable after construction
+  const double curvature_a = 0.5 / radius_large; // the smaller relative curvature
+  const double log_ratio = std::log(radius_large / radius_small);
+  const double position = std::clamp(log_ratio, 0.0, EllipticTable::max_log_ratio) /
+                          EllipticTable::max_log_ratio * (EllipticTable::n_points - 1);
+  const auto lower = std::min(static_cast<std::size_t>(position), std::size_t{EllipticTable::n_points - 2});
+  const double fraction = position - static_cast<double>(lower);
+  const double value =
+      (1.0 - fraction) * table.radius_times_a[lower] + fraction * table.radius_times_a[lower + 1];
+  return value / curvature_a;
+}
+
+} // namespace aniso::dem

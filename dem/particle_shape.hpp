@@ -1,0 +1,41 @@
+#pragma once
+// The shapes of an assembly's particles as the contact code needs them: one ovoid of unit
+// half-width per distinct aspect ratio (all particles share the splice angle), scaled by each
+// particle's half-width and turned by its orientation. Spheres (aspect ratio 1) take the
+// sphere fast path in the force loop and never reach this table.
+
+#include "common/tensor.hpp"
+#include "dem/ovoid_contact.hpp"
+
+#include <vector>
+
+namespace aniso::dem {
+
+/// Volume of a particle of half-width `radius` (sphere for aspect ratio 1) [m^3].
+double particle_volume(double radius, double aspect_ratio, double splice_angle);
+/// Principal moments of inertia in the body frame (axis of revolution = z) [kg m^2].
+Vec3 particle_inertia(double radius, double aspect_ratio, double splice_angle, double density);
+/// Half the axial height, the smallest half-extent of an oblate particle [m].
+inline double half_height(double radius, double aspect_ratio) {
+  return radius * aspect_ratio;
+}
+
+class ShapeTable {
+public:
+  explicit ShapeTable(double splice_angle) : splice_angle_(splice_angle) {}
+  /// Makes the shape of this aspect ratio known (every rank must add the same set).
+  void add(double aspect_ratio);
+  /// The particle's geometry in the world frame; its aspect ratio must have been added.
+  [[nodiscard]] ConvexBody body(double radius, double aspect_ratio, const Quat& orientation) const;
+  [[nodiscard]] double splice_angle() const { return splice_angle_; }
+
+private:
+  struct Entry {
+    double aspect_ratio;
+    ConvexBody unit; ///< half-width 1, axis z
+  };
+  double splice_angle_;
+  std::vector<Entry> entries_;
+};
+
+} // namespace aniso::dem

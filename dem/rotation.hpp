@@ -1,0 +1,26 @@
+#pragma once
+// Rigid rotation of an axisymmetric particle (principal moments I1 = I2 about axes normal to
+// the axis of revolution, I3 about it), with the world-frame angular velocity as the state.
+// The drift is the exact torque-free motion (free precession), so a velocity-Verlet splitting
+// "kick by the torque, rotate freely, kick" conserves energy and angular momentum to
+// round-off for a free particle. Derivation: docs/methods/ovoid.md.
+
+#include "common/tensor.hpp"
+
+namespace aniso::dem {
+
+/// I_world^-1 v for body-frame principal moments `inertia` (x == y) and world axis `axis`.
+Vec3 inverse_inertia_times(const Vec3& inertia, const Vec3& axis, const Vec3& v);
+/// I_world v.
+Vec3 inertia_times(const Vec3& inertia, const Vec3& axis, const Vec3& v);
+
+/// Rotational kinetic energy omega . I_world omega / 2.
+inline double rotational_energy(const Vec3& inertia, const Quat& orientation, const Vec3& angular_velocity) {
+  return 0.5 * angular_velocity.dot(inertia_times(inertia, orientation * Vec3::UnitZ(), angular_velocity));
+}
+
+/// Advances orientation and world angular velocity by dt of torque-free motion, exactly:
+/// with L = I_world omega fixed, R(t) = Rot(L, |L| t / I1) R(0) Rot_body(z, (1/I3 - 1/I1) L.e t).
+void free_rotation(Quat& orientation, Vec3& angular_velocity, const Vec3& inertia, double dt);
+
+} // namespace aniso::dem
