@@ -71,8 +71,12 @@ int run_fabric(int argc, char** argv, const mpi::Comm& comm) {
     log_measures(logger, measures.back());
   }
   fabric::LinkedResults linked;
-  for (const auto& path : probes)
+  for (const auto& path : probes) {
     linked.probes.push_back(fabric::read_probe_stiffness(path));
+    if (!linked.probes.back().checks_passed)
+      logger->warn("{}: the probe's own checks failed (checks_passed = 0); its C is correlated all the same",
+                   path);
+  }
   for (const auto& path : permeabilities)
     linked.permeabilities.push_back(fabric::read_permeability(path));
   for (const auto& path : voids)
