@@ -69,7 +69,7 @@ ProbeResult assemble_result(const std::array<ForkFile, n_fork_files>& forks, con
   for (int k = 0; k < n_fork_files; ++k)
     result.forks[static_cast<std::size_t>(k)] = forks[static_cast<std::size_t>(k)].result;
   result.stiffness = assemble_stiffness(result.forks);
-  warning = increment_problems(result.stiffness, config.linearity_tolerance, config.noise_tolerance);
+  warning = increment_problems(result.stiffness, config.tolerances);
   result.checks_passed = warning.empty();
   if (!warning.empty() && config.check_increment) {
     throw NumericalError(

@@ -12,7 +12,7 @@ using config::Range;
 ProbeConfig read_probe_config(config::Reader& reader) {
   ProbeConfig c;
   c.output_dir = reader.text("probe.output_dir", c.output_dir, "folder for probe results and fork files");
-  c.increment = reader.real("probe.increment", c.increment, units::none, Range::closed(1e-9, 1e-2),
+  c.increment = reader.real("probe.increment", c.increment, units::none, Range::closed(1e-16, 1e-2),
                             "|d eps_ii| of each oedometric fork (paper: 5e-5)");
   c.inertial_number =
       reader.real("probe.inertial_number", c.inertial_number, units::none, Range::closed(1e-7, 1e-1),
@@ -24,14 +24,17 @@ ProbeConfig read_probe_config(config::Reader& reader) {
   require_input(c.window_steps <= c.hold_steps,
                 fmt::format("config: probe.window_steps ({}) must not exceed probe.hold_steps ({})",
                             c.window_steps, c.hold_steps));
-  c.linearity_tolerance =
-      reader.real("probe.linearity_tolerance", c.linearity_tolerance, units::none, Range::positive(),
-                  "largest relative difference of the moduli of the two half increments (too large an "
-                  "increment otherwise)");
-  c.noise_tolerance =
-      reader.real("probe.noise_tolerance", c.noise_tolerance, units::none, Range::positive(),
-                  "largest rms fluctuation of d sigma_ii over the window, relative to d sigma_ii (too small "
-                  "an increment otherwise)");
+  auto& t = c.tolerances;
+  t.linearity = reader.real(
+      "probe.linearity_tolerance", t.linearity, units::none, Range::positive(),
+      "too large an increment: the moduli of the two half increments differ by more (fraction of O_i)");
+  t.sliding = reader.real("probe.sliding_tolerance", t.sliding, units::none, Range::positive(),
+                          "too large an increment: it made more than this fraction of the contacts slide");
+  t.resolution =
+      reader.real("probe.resolution_floor", t.resolution, units::none, Range::closed(0.0, 1.0),
+                  "too small an increment: its stress response is a smaller fraction of the stress");
+  t.noise = reader.real("probe.noise_tolerance", t.noise, units::none, Range::positive(),
+                        "reading unsettled: rms of d sigma_ii over the window, relative to d sigma_ii");
   c.check_increment = reader.boolean("probe.check_increment", c.check_increment,
                                      "refuse results whose increment is detected as too large or too small");
   return c;

@@ -4,6 +4,7 @@
 // docs/charts/probe_stability.png) and an allowed range.
 
 #include "common/config.hpp"
+#include "probe/tolerances.hpp"
 
 #include <cstdint>
 #include <string>
@@ -15,11 +16,10 @@ struct ProbeConfig {
   double increment = 5e-5;      ///< |d eps_ii| of each fork (paper: 0.005% = 5e-5)
   /// Rate of the increment as an inertial number I = rate D50 sqrt(rho / p) at the checkpoint's p.
   double inertial_number = 1e-3;
-  std::int64_t hold_steps = 500;    ///< steps held after each half increment before the stress is read
-  std::int64_t window_steps = 250;  ///< the stress is averaged over the last window_steps of each hold
-  double linearity_tolerance = 0.5; ///< largest relative difference of the two half-increment moduli
-  double noise_tolerance = 0.1;     ///< largest rms fluctuation of d sigma_ii in the window, / |d sigma_ii|
-  bool check_increment = true;      ///< refuse increments found too large or too small
+  std::int64_t hold_steps = 500;   ///< steps held after each half increment before the stress is read
+  std::int64_t window_steps = 250; ///< the stress is averaged over the last window_steps of each hold
+  IncrementTolerances tolerances;  ///< of the increment checks
+  bool check_increment = true;     ///< refuse increments found too large or too small
 };
 
 /// Reads every [probe] key through `reader` (which records and range-checks them).

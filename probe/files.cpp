@@ -216,9 +216,18 @@ void write_probe_result(const std::string& path, const ProbeResult& result,
                  "|M_second - M_first| / O_i^+ of the two half increments");
     write_vector(group, "linearity_minus", s.linearity_minus, units::none,
                  "|M_second - M_first| / O_i^- of the two half increments");
-    write_vector(group, "noise_plus", s.noise_plus, units::none, "settle residual / |d sigma_ii|, extension");
+    write_vector(group, "noise_plus", s.noise_plus, units::none,
+                 "rms of d sigma_ii over the reading window / |d sigma_ii|, extension forks");
     write_vector(group, "noise_minus", s.noise_minus, units::none,
-                 "settle residual / |d sigma_ii|, compression");
+                 "rms of d sigma_ii over the reading window / |d sigma_ii|, compression forks");
+    write_vector(group, "sliding_plus", s.sliding_plus, units::none,
+                 "(sliding contacts of the fork - of the reference) / contacts, extension forks");
+    write_vector(group, "sliding_minus", s.sliding_minus, units::none,
+                 "(sliding contacts of the fork - of the reference) / contacts, compression forks");
+    write_vector(group, "resolution_plus", s.resolution_plus, units::none,
+                 "|d sigma_ii| / largest |sigma_kl| of the reference, extension forks");
+    write_vector(group, "resolution_minus", s.resolution_minus, units::none,
+                 "|d sigma_ii| / largest |sigma_kl| of the reference, compression forks");
     h5::Group forks = file.create_group("forks");
     for (const ForkResult& fork : result.forks) {
       h5::Group child = forks.create_group(fmt::format("fork_{}", fork.index));
@@ -250,6 +259,10 @@ ProbeResult read_probe_result(const std::string& path) {
   s.linearity_minus = read_vector(group, "linearity_minus");
   s.noise_plus = read_vector(group, "noise_plus");
   s.noise_minus = read_vector(group, "noise_minus");
+  s.sliding_plus = read_vector(group, "sliding_plus");
+  s.sliding_minus = read_vector(group, "sliding_minus");
+  s.resolution_plus = read_vector(group, "resolution_plus");
+  s.resolution_minus = read_vector(group, "resolution_minus");
   const h5::Group forks = file.open_group("forks");
   for (int k = 0; k < n_fork_files; ++k) {
     r.forks[static_cast<std::size_t>(k)] = read_fork_group(forks.open_group(fmt::format("fork_{}", k)));

@@ -13,6 +13,8 @@ struct ForkModuli {
   Vec3 column = Vec3::Zero(); ///< d sigma_jj / d eps_ii for j = 1..3 (secant over the whole increment)
   double linearity = 0;
   double noise = 0;
+  double sliding = 0;
+  double resolution = 0;
 };
 
 // d sigma(t) of a fork against the reference at the same steps.
@@ -50,6 +52,10 @@ ForkModuli fork_moduli(const ForkResult& fork, const ForkResult& reference) {
   for (const Mat3& d : d_final)
     square_sum += (d(a, a) - mean_final(a, a)) * (d(a, a) - mean_final(a, a));
   m.noise = std::sqrt(square_sum / static_cast<double>(d_final.size())) / std::abs(mean_final(a, a));
+  // Contacts made to slide by the increment: the fork's count against the reference's at the same step.
+  m.sliding = static_cast<double>(fork.sliding_final - reference.sliding_final) /
+              static_cast<double>(std::max<std::int64_t>(reference.contacts_final, 1));
+  m.resolution = std::abs(mean_final(a, a)) / mean_of(reference.samples_final).cwiseAbs().maxCoeff();
   return m;
 }
 
@@ -73,6 +79,8 @@ Stiffness assemble_stiffness(const std::array<ForkResult, n_fork_files>& forks) 
     (plus ? s.K_plus : s.K_minus).col(i) = m.column / m.column[i]; // K_i^j = d sigma_jj / d sigma_ii
     (plus ? s.linearity_plus : s.linearity_minus)[i] = m.linearity;
     (plus ? s.noise_plus : s.noise_minus)[i] = m.noise;
+    (plus ? s.sliding_plus : s.sliding_minus)[i] = m.sliding;
+    (plus ? s.resolution_plus : s.resolution_minus)[i] = m.resolution;
   }
   s.C = 0.5 * (s.Q_plus + s.Q_minus); // eq. (decomp)
   s.D = 0.5 * (s.Q_plus - s.Q_minus);
@@ -80,23 +88,35 @@ Stiffness assemble_stiffness(const std::array<ForkResult, n_fork_files>& forks) 
   return s;
 }
 
-std::string increment_problems(const Stiffness& stiffness, double linearity_tolerance,
-                               double noise_tolerance) {
-  const double linearity =
-      std::max(stiffness.linearity_plus.maxCoeff(), stiffness.linearity_minus.maxCoeff());
-  const double noise = std::max(stiffness.noise_plus.maxCoeff(), stiffness.noise_minus.maxCoeff());
+std::string increment_problems(const Stiffness& stiffness, const IncrementTolerances& tolerances) {
+  const auto largest = [](const Vec3& plus, const Vec3& minus) {
+    return std::max(plus.maxCoeff(), minus.maxCoeff());
+  };
+  const double linearity = largest(stiffness.linearity_plus, stiffness.linearity_minus);
+  const double sliding = largest(stiffness.sliding_plus, stiffness.sliding_minus);
+  const double resolution =
+      std::min(stiffness.resolution_plus.minCoeff(), stiffness.resolution_minus.minCoeff());
+  const double noise = largest(stiffness.noise_plus, stiffness.noise_minus);
   std::string problems;
-  if (!(linearity <= linearity_tolerance)) {
-    problems += fmt::format(
-        "increment too large: the two half increments differ in modulus by {:.3g} of O_i (tolerance "
-        "{:.3g}): contacts slide and the response is no longer incrementally linear; lower probe.increment. ",
-        linearity, linearity_tolerance);
+  if (!(linearity <= tolerances.linearity && sliding <= tolerances.sliding)) {
+    problems += fmt::format("increment too large: it made {:.3g} of the contacts slide (tolerance {:.3g}) "
+                            "and the two half increments "
+                            "differ in modulus by {:.3g} of O_i (tolerance {:.3g}): the response is no "
+                            "longer incrementally linear; "
+                            "lower probe.increment. ",
+                            sliding, tolerances.sliding, linearity, tolerances.linearity);
   }
-  if (!(noise <= noise_tolerance)) {
+  if (!(resolution >= tolerances.resolution)) {
+    problems += fmt::format("increment too small: the stress response is {:.3g} of the stress (floor "
+                            "{:.3g}): round-off decides its "
+                            "digits; raise probe.increment. ",
+                            resolution, tolerances.resolution);
+  }
+  if (!(noise <= tolerances.noise)) {
     problems += fmt::format(
-        "increment too small: the stress response fluctuates by {:.3g} of itself over the reading window "
-        "(tolerance {:.3g}): the moduli are noise; raise probe.increment or probe.window_steps. ",
-        noise, noise_tolerance);
+        "reading unsettled: the stress response fluctuates by {:.3g} of itself over the reading window "
+        "(tolerance {:.3g}); raise probe.window_steps or probe.hold_steps. ",
+        noise, tolerances.noise);
   }
   if (!problems.empty()) problems.pop_back();
   return problems;

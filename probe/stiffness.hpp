@@ -29,6 +29,12 @@ struct Stiffness {
   Vec3 linearity_minus = Vec3::Zero(); ///< the same for the compression forks
   Vec3 noise_plus = Vec3::Zero();      ///< rms of d sigma_ii(t) about its mean in the window / |d sigma_ii|
   Vec3 noise_minus = Vec3::Zero();     ///< the same for the compression forks
+  /// (contacts sliding at the end of the fork - those of the reference) / contacts of the reference
+  Vec3 sliding_plus = Vec3::Zero();
+  Vec3 sliding_minus = Vec3::Zero();
+  /// |d sigma_ii| / largest |sigma_kl| of the reference: the digits of the response left after subtraction
+  Vec3 resolution_plus = Vec3::Zero();
+  Vec3 resolution_minus = Vec3::Zero();
 };
 
 /// Assembles the matrices from the seven forks, forks[k] being fork k (0 = reference). InputError if
@@ -37,7 +43,6 @@ Stiffness assemble_stiffness(const std::array<ForkResult, n_fork_files>& forks);
 
 /// What the increment checks found: empty if the increment sits where the moduli do not depend
 /// on it, else a message saying which check failed, by how much, and what to change.
-std::string increment_problems(const Stiffness& stiffness, double linearity_tolerance,
-                               double noise_tolerance);
+std::string increment_problems(const Stiffness& stiffness, const IncrementTolerances& tolerances);
 
 } // namespace aniso::probe

@@ -102,7 +102,7 @@ TEST(Stiffness, RecoversCAndDOfABilinearMaterial) {
     }
   }
   EXPECT_LT(s.linearity_plus.maxCoeff(), 1e-9);
-  EXPECT_EQ(increment_problems(s, 0.1, 0.02), "");
+  EXPECT_EQ(increment_problems(s, IncrementTolerances{}), "");
 }
 
 TEST(Stiffness, MeasuresLinearityFromTheTwoHalves) {
@@ -110,19 +110,47 @@ TEST(Stiffness, MeasuresLinearityFromTheTwoHalves) {
   const Stiffness s = assemble_stiffness(synthetic_forks(5e-5, 0.1));
   EXPECT_NEAR(s.linearity_plus.maxCoeff(), 0.2, 1e-9);
   EXPECT_NEAR(s.linearity_minus.minCoeff(), 0.2, 1e-9);
-  const std::string problems = increment_problems(s, 0.1, 0.02);
+  IncrementTolerances tolerances;
+  tolerances.linearity = 0.1;
+  const std::string problems = increment_problems(s, tolerances);
   EXPECT_NE(problems.find("increment too large"), std::string::npos) << problems;
   EXPECT_EQ(problems.find("too small"), std::string::npos) << problems;
-  EXPECT_EQ(increment_problems(s, 0.25, 0.02), "");
+  tolerances.linearity = 0.25;
+  EXPECT_EQ(increment_problems(s, tolerances), "");
 }
 
-TEST(Stiffness, FlagsAnIncrementLostInNoise) {
-  // A 5e-7 increment in compression moves sigma_33 by -(200e6 - (-30e6)) 5e-7 = -115 Pa; a wobble of
-  // +-11.5 Pa about it is a relative rms of 0.1.
-  const Stiffness s = assemble_stiffness(synthetic_forks(5e-7, 0.0, 11.5));
-  EXPECT_NEAR(s.noise_minus[2], 0.1, 1e-9);
-  const std::string problems = increment_problems(s, 0.1, 0.02);
+TEST(Stiffness, FlagsAnIncrementThatMakesContactsSlide) {
+  auto forks = synthetic_forks(5e-5);
+  for (auto& fork : forks)
+    fork.contacts_final = 1000;
+  forks[0].sliding_final = 150;
+  for (int k = 1; k <= n_forks; ++k)
+    forks[static_cast<std::size_t>(k)].sliding_final = 160;
+  forks[4].sliding_final = 300; // the compression fork on x2 made 15% of the contacts slide
+  const Stiffness s = assemble_stiffness(forks);
+  EXPECT_NEAR(s.sliding_minus[1], 0.15, 1e-12);
+  EXPECT_NEAR(s.sliding_plus[0], 0.01, 1e-12);
+  const std::string problems = increment_problems(s, IncrementTolerances{});
+  EXPECT_NE(problems.find("increment too large"), std::string::npos) << problems;
+  EXPECT_NE(problems.find("0.15 of the contacts slide"), std::string::npos) << problems;
+}
+
+TEST(Stiffness, FlagsAnIncrementLostInRoundOff) {
+  // delta = 1e-13 moves sigma_22 by about 1e-5 Pa, 1e-10 of the 1e5 Pa stress.
+  const Stiffness s = assemble_stiffness(synthetic_forks(1e-13));
+  EXPECT_LT(s.resolution_plus.minCoeff(), 1e-9);
+  const std::string problems = increment_problems(s, IncrementTolerances{});
   EXPECT_NE(problems.find("increment too small"), std::string::npos) << problems;
+  EXPECT_EQ(increment_problems(assemble_stiffness(synthetic_forks(1e-9)), IncrementTolerances{}), "");
+}
+
+TEST(Stiffness, FlagsAnUnsettledReading) {
+  // A 5e-7 increment in compression moves sigma_33 by -(200e6 - (-30e6)) 5e-7 = -115 Pa; a wobble of
+  // +-34.5 Pa about it is a relative rms of 0.3.
+  const Stiffness s = assemble_stiffness(synthetic_forks(5e-7, 0.0, 34.5));
+  EXPECT_NEAR(s.noise_minus[2], 0.3, 1e-9);
+  const std::string problems = increment_problems(s, IncrementTolerances{});
+  EXPECT_NE(problems.find("reading unsettled"), std::string::npos) << problems;
 }
 
 TEST(Stiffness, RefusesForksOutOfOrderOrStrainedTheWrongWay) {

@@ -4,8 +4,9 @@
 Probes one checkpoint with aniso-probe over a sweep of the increment delta, of the
 increment's rate (inertial number) and of the hold before the stress is read, and charts
 the directional moduli C_ii/K_C and the relative error of C against a reference run on the
-plateau, with the two increment checks (linearity of the two half increments, noise of the
-reading) that detect too large and too small increments. The numbers go to
+plateau, with the increment checks that detect too large (linearity of the two half
+increments, contacts made to slide) and too small (response against round-off) increments
+and an unsettled reading. The numbers go to
 probe_stability.csv beside the figure.
 
 usage: chart_probe_stability.py ANISO_PROBE CHECKPOINT.h5 WORK_FOLDER OUTPUT_FOLDER
@@ -24,7 +25,7 @@ import numpy as np  # noqa: E402
 from probe_io import read_probe, relative_error  # noqa: E402
 
 DEFAULTS = {"increment": 5e-5, "inertial_number": 1e-3, "hold_steps": 500}
-INCREMENTS = [1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 2e-5, 5e-5, 1e-4, 3e-4, 1e-3]
+INCREMENTS = [1e-15, 1e-13, 1e-11, 1e-9, 1e-7, 1e-6, 1e-5, 2e-5, 5e-5, 1e-4, 3e-4, 1e-3]
 INERTIAL_NUMBERS = [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
 HOLDS = [100, 200, 500, 1000, 2000]
 # The reference: on the plateau of all three sweeps, well inside both increment checks.
@@ -84,10 +85,13 @@ def main():
         top.set_xscale("log")
         # The reference itself has error 0, which a log axis cannot show.
         bottom.plot(x, [e if e > 0 else np.nan for e in error], "ko-", label=r"$\|C - C_{ref}\| / \|C_{ref}\|$")
-        bottom.plot(x, [r["linearity"] for r in runs], "s--", color="C3", label="linearity check (halves)")
-        bottom.plot(x, [r["noise"] for r in runs], "^--", color="C4", label="noise check (reading)")
-        bottom.axhline(0.5, color="C3", lw=0.8, ls=":")
-        bottom.axhline(0.1, color="C4", lw=0.8, ls=":")
+        bottom.plot(x, [r["linearity"] for r in runs], "s--", color="C3", label="linearity of the halves (<= 1)")
+        bottom.plot(x, [max(r["sliding"], 1e-4) for r in runs], "v--", color="C5",
+                    label="contacts made to slide (<= 0.1)")
+        bottom.plot(x, [r["noise"] for r in runs], "^--", color="C4", label="reading noise (<= 0.25)")
+        bottom.plot(x, [r["resolution"] for r in runs], "d--", color="C6", label="response / stress (>= 1e-9)")
+        for level, colour in ((1.0, "C3"), (0.1, "C5"), (0.25, "C4"), (1e-9, "C6")):
+            bottom.axhline(level, color=colour, lw=0.8, ls=":")
         bottom.axvline(DEFAULTS[key], color="grey", ls=":")
         bottom.set_yscale("log")
         bottom.set_xscale("log")
@@ -97,7 +101,7 @@ def main():
             bottom.legend(fontsize=8)
         for v, r, e in zip(x, runs, error):
             rows.append((key, v, r["K_C"], *(r["C"][i, i] / r["K_C"] for i in range(3)),
-                         np.abs(r["D"]).max() / r["K_C"], e, r["linearity"], r["noise"],
+                         np.abs(r["D"]).max() / r["K_C"], e, r["linearity"], r["sliding"], r["noise"], r["resolution"],
                          r["steps_per_fork"], r["wall"]))
     # Speed/accuracy: cost of one fork against the error of C, over the rate and hold sweeps.
     cost = axes[0, 3]
@@ -116,7 +120,8 @@ def main():
     cost.legend(fontsize=8)
     axes[1, 3].axis("off")
     axes[1, 3].text(0.0, 0.5, "defaults: " + ", ".join(f"{k} = {v:g}" for k, v in DEFAULTS.items())
-                    + "\nchecks: linearity <= 0.5 (too large),\nnoise <= 0.1 (too small)", fontsize=9)
+                    + "\nchecks: too large if linearity > 1 or sliding > 0.1,\ntoo small if response/stress < 1e-9,"
+                    "\nreading unsettled if noise > 0.25", fontsize=9)
     axes[0, 0].set_title("increment (rate and hold at defaults)")
     axes[0, 1].set_title("rate of the increment")
     axes[0, 2].set_title("hold before the reading")
@@ -125,7 +130,7 @@ def main():
     fig.tight_layout()
     fig.savefig(os.path.join(charts, "probe_stability.png"), dpi=110)
 
-    header = ("sweep,value,K_C,C11/K_C,C22/K_C,C33/K_C,max|D|/K_C,error_C,linearity,noise,"
+    header = ("sweep,value,K_C,C11/K_C,C22/K_C,C33/K_C,max|D|/K_C,error_C,linearity,sliding,noise,resolution,"
               "steps_per_fork,wall_s")
     with open(os.path.join(charts, "probe_stability.csv"), "w") as f:
         f.write(header + "\n")

@@ -13,9 +13,10 @@ def read_probe(path):
             out[name] = g.attrs[name]
         forks = f["forks"]
         out["steps_per_fork"] = 2 * (int(forks["fork_1"].attrs["half_steps"]) + int(forks["fork_1"].attrs["hold_steps"]))
-        out["particles"] = None
     out["linearity"] = max(out["linearity_plus"].max(), out["linearity_minus"].max())
     out["noise"] = max(out["noise_plus"].max(), out["noise_minus"].max())
+    out["sliding"] = max(out["sliding_plus"].max(), out["sliding_minus"].max())
+    out["resolution"] = min(out["resolution_plus"].min(), out["resolution_minus"].min())
     return out
 
 
