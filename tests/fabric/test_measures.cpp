@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <numbers>
 
 #include "synthetic.hpp"
@@ -76,6 +78,38 @@ TEST(FabricOvoid, SingleRotatedOvoidGivesTheRotatedBodyTensors) {
   // Oblate: the surface normals gather along the axis, the surface inertia across it.
   EXPECT_GT(S_body(2, 2), S_body(0, 0));
   EXPECT_LT(I_body(2, 2), I_body(0, 0));
+}
+
+TEST(FabricOvoid, TripleOverlapOfFlatOvoidsEntersChiOnTheTorus) {
+  // Three flat ovoids (alpha 0.5, D = 1 mm) 0.8 mm apart in a plane: lying flat they share the
+  // triangle's centre (N_3 = 1, chi_torus = 3 - 3 + 1); standing on edge, facing away from the
+  // centre, they do not (N_3 = 0) although the contact list is the same.
+  const double D = 1e-3, d = 0.8e-3;
+  const Vec3 L = Vec3::Constant(5e-3), o(2e-3, 2e-3, 2.5e-3);
+  const std::array<Vec3, 3> centres{o, o + Vec3(d, 0, 0), o + Vec3(0.5 * d, 0.5 * std::sqrt(3.0) * d, 0)};
+  const Vec3 middle = (centres[0] + centres[1] + centres[2]) / 3.0;
+  for (const bool flat : {true, false}) {
+    h5::Checkpoint c = test::empty_checkpoint(L, L, D);
+    for (const Vec3& x : centres)
+      test::add_particle(c, D, 0.5, x,
+                         flat ? Quat::Identity() : Quat::FromTwoVectors(Vec3::UnitZ(), x - middle));
+    for (std::uint64_t i = 0; i < 3; ++i)
+      for (std::uint64_t j = i + 1; j < 3; ++j) {
+        const Vec3 n = (centres[j] - centres[i]).normalized();
+        c.contacts.particles.push_back({i, j});
+        c.contacts.image_shift.push_back(Vec3i::Zero());
+        c.contacts.normal.push_back(n);
+        c.contacts.point.push_back(0.5 * (centres[i] + centres[j]));
+        c.contacts.overlap.push_back(0.2e-3);
+        c.contacts.force.push_back(-1e-3 * n);
+        c.contacts.tangential_force.push_back(Vec3::Zero());
+        c.contacts.sliding.push_back(0);
+      }
+    const FabricMeasures m = measure_written(c, "ovoid_triple.h5");
+    EXPECT_EQ(m.n_triples, flat ? 1 : 0) << (flat ? "flat" : "standing");
+    EXPECT_EQ(m.chi_paper, 1.0 + 3 - 3);
+    EXPECT_EQ(m.chi_torus, flat ? 1.0 : 0.0);
+  }
 }
 
 TEST(FabricLattice, SimpleCubicGivesExactContactTensorsAndChi) {
