@@ -43,6 +43,7 @@ void write_result(const std::string& path, const probe::ProbeResult& result, con
 
 int run_probe(int argc, char** argv, const mpi::Comm& comm) {
   CLI::App app{"aniso-probe: incremental stiffness Q+, Q-, C, D from six oedometric forks of a checkpoint "
+               "and a reference fork "
                "(Kuhn, Sun & Wang 2015, section 5)"};
   cli::CommonOptions options;
   cli::add_common_options(app, options, "aniso-probe");
