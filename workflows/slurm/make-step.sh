@@ -25,6 +25,8 @@ for argument in "$@"; do
     *) arguments+=("$argument") ;;
   esac
 done
+# Threaded stages (aniso-voxel) stay within the job's CPUs: --cpus-per-task, else one per task.
+export OMP_NUM_THREADS=${OMP_NUM_THREADS:-${SLURM_CPUS_PER_TASK:-1}}
 echo "make-step: job ${SLURM_JOB_ID:-?} task $task on $(hostname) at $(date -u +%FT%TZ): ${SLURM_NTASKS:-1} tasks"
 if [[ ${#upstream[@]} -gt 0 ]] && ! make -q -C "$workflows" "${variables[@]}" "${upstream[@]}"; then
   echo "make-step: error: the files this job depends on are missing or out of date: ${upstream[*]}" >&2

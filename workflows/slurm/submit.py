@@ -5,9 +5,11 @@ usage: submit.py --config FILE.toml --out RUN_DIR --bin BUILD_DIR [--ranks N]
                  [--launcher 'srun --mpi=pmix'] [--sbatch-arg=ARG ...] [--dry-run] [--wait]
 
 The jobs are the steps of workflows/Makefile (its `slurm-plan` target lists
-them): prepare -> load -> per checkpoint {probe forks as a 6-task array ->
-probe collect; voxel -> LBM directions as a 3-task array -> LBM collect},
-fabric after load, and the figures and report after everything. Each job runs
+them): prepare -> load -> per checkpoint {the seven probe forks (reference and
+six increments) as a 7-task array -> probe collect; voxel -> the LBM's three
+flow directions as a 3-task array -> LBM collect (or one LBM job when aniso-lbm
+runs all directions at once)}, fabric after the load, the fabric series after
+every analysis, and the figures and report last. Each job runs
 `make <its targets>` (slurm/make-step.sh), so a job's output is exactly what a
 local `make campaign` writes, and resubmitting after a failure or a kill
 submits only the steps whose files are missing or out of date.
@@ -110,8 +112,8 @@ def sbatch_command(step, waits_for, args, variables, log_dir):
         # --kill-on-invalid-dep: a failed upstream job cancels this one instead of leaving it pending
         command += ["--dependency=afterok:" + ":".join(job_ids), "--kill-on-invalid-dep=yes"]
     command += args.sbatch_arg
-    keep = [f"--upstream={path}" for s in waits_for for path in s.expanded_targets()]
-    return command + [STEP_SCRIPT, WORKFLOWS, *variables, *keep, *step.targets]
+    upstream_files = [f"--upstream={path}" for s in waits_for for path in s.expanded_targets()]
+    return command + [STEP_SCRIPT, WORKFLOWS, *variables, *upstream_files, *step.targets]
 
 
 def submit(steps, args, variables):
@@ -131,16 +133,16 @@ def submit(steps, args, variables):
         env = dict(os.environ, ANISO_SLURM_LAUNCHER=args.launcher)
         result = subprocess.run(command, capture_output=True, text=True, env=env)
         if result.returncode != 0:
-            fail(f"sbatch refused step {step.name}: {result.stderr.strip()}")
+            queued = " ".join(s.job_id for s in submitted)
+            fail(f"sbatch refused step {step.name}: {result.stderr.strip()}"
+                 + (f"; already queued: {queued} (scancel them, or fix the cause and submit again)" if queued else ""))
         step.job_id = result.stdout.strip().split(";")[0]
         submitted.append(step)
+        with open(os.path.join(log_dir, "jobs.tsv"), "a") as table:  # at once: a later refusal keeps it
+            table.write(f"{step.name}\t{step.job_id}\t{step.tasks}\t{' '.join(step.targets)}\n")
         say(f"{step.name}: job {step.job_id}" + (f" (array of {step.tasks})" if step.tasks > 1 else "")
             + (f", after {','.join(s.job_id for s in waits_for if s.job_id)}"
                if any(s.job_id for s in waits_for) else ""))
-    if not args.dry_run:
-        with open(os.path.join(log_dir, "jobs.tsv"), "a") as table:
-            for step in submitted:
-                table.write(f"{step.name}\t{step.job_id}\t{step.tasks}\t{' '.join(step.targets)}\n")
     return submitted
 
 
