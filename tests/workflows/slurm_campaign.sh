@@ -52,12 +52,23 @@ PY
 )
 stop_cluster() {
   local code=$?
+  [[ -z ${watchdog:-} ]] || kill "$watchdog" 2>/dev/null || true
   ANISO_SLURM_KEEP=0 "$cluster" stop || true
   rm -rf "$ANISO_SLURM_DIR"
   exit $code
 }
 trap stop_cluster EXIT
 trap 'exit 130' INT TERM
+# ctest kills a test that overruns its TIMEOUT (600 s) with SIGKILL, which no
+# trap sees, and bash runs a trap only once the command in progress ends. So a
+# watchdog stops the daemons itself before that, then ends the test.
+(
+  sleep "${SLURM_TEST_LIMIT:-540}"
+  echo "slurm_campaign: FAIL: over the time limit; stopping the cluster" >&2
+  "$cluster" stop
+  kill -TERM $$
+) &
+watchdog=$!
 
 # The reference: the same campaign run locally, one process per stage.
 make -s -C "$workflows" campaign CONFIG="$config" OUT="$work/local" BIN="$build_dir" >"$work/local.log" 2>&1 \

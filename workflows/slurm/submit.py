@@ -149,6 +149,8 @@ def submit(steps, args, variables):
 def job_states(job_id):
     """{array task id ("" for a plain job): state} of a job; {} once SLURM has forgotten it."""
     result = subprocess.run(["scontrol", "-o", "show", "job", job_id], capture_output=True, text=True)
+    if result.returncode != 0 and "Invalid job id" not in result.stderr:
+        fail(f"cannot ask SLURM about job {job_id}: {result.stderr.strip()} (the jobs go on; watch them with squeue)")
     states = {}
     for line in result.stdout.splitlines():
         fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
