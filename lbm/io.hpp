@@ -35,6 +35,28 @@ struct PermeabilityFile {
 /// Reads and validates a permeability file; FileError naming the file and the problem.
 PermeabilityFile read_permeability(const std::string& path);
 
+/// The runs of one flow direction (`aniso-lbm --direction D`), collected later by `aniso-lbm collect`.
+struct DirectionFile {
+  int axis = 0;
+  Method method = Method::periodic_body_force;
+  PermeabilitySettings settings; ///< tau, magic, body_force, precision, tolerance as run
+  std::vector<FlowRun> runs;
+  h5::VoxelImage image; ///< metadata only (no phase): shape, voxel_size, source, source_hash
+  double porosity = 0;
+  std::int64_t fluid_voxels = 0;
+};
+
+/// "<output_dir>/permeability_<stem>_direction<D>.h5".
+std::string direction_path(const std::string& output_dir, const std::string& image_path, int axis);
+
+/// Writes the runs of one direction. Serial (rank 0).
+void write_direction(const std::string& path, const std::vector<FlowRun>& runs, int axis,
+                     const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                     const h5::Provenance& provenance);
+
+/// Reads and validates a direction file; FileError naming the file and the problem.
+DirectionFile read_direction(const std::string& path);
+
 /// Writes one velocity field per run [n3, n2, n1, 3] in lattice units and its XDMF sidecar. Serial (rank 0).
 void write_velocity(const std::string& path, const PermeabilityResult& result, const h5::VoxelImage& image,
                     const h5::Provenance& provenance);

@@ -12,6 +12,56 @@
 
 namespace {
 
+void log_tensor(const aniso::lbm::PermeabilityResult& result, double voxel_size,
+                const aniso::Logger& logger) {
+  const aniso::Mat3 k = result.k_lattice * voxel_size * voxel_size;
+  logger->info("K [m^2] = [{:.4e} {:.4e} {:.4e}; {:.4e} {:.4e} {:.4e}; {:.4e} {:.4e} {:.4e}]", k(0, 0),
+               k(0, 1), k(0, 2), k(1, 0), k(1, 1), k(1, 2), k(2, 0), k(2, 1), k(2, 2));
+  if (result.method == aniso::lbm::Method::periodic_body_force)
+    logger->info("symmetry error |K - K^T| / |K| = {:.3e}", result.symmetry_error);
+  else
+    logger->info("inverse problem (kijsolver) relative residual = {:.3e}", result.inverse_residual);
+}
+
+/// `aniso-lbm collect`: the tensor from three direction files, which must agree on image and settings.
+int collect_directions(const std::string& input, const aniso::lbm::LbmConfig& config,
+                       const aniso::cli::CommonOptions& options, const aniso::mpi::Comm& comm) {
+  using namespace aniso;
+  const Logger logger = make_logger("aniso-lbm", comm, options.log_level);
+  std::vector<lbm::DirectionFile> files;
+  std::vector<lbm::FlowRun> runs;
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::string path = lbm::direction_path(config.output_dir, input, axis);
+    files.push_back(lbm::read_direction(path));
+    const lbm::DirectionFile& d = files.back();
+    const lbm::DirectionFile& first = files.front();
+    require_file(d.axis == axis, fmt::format("{}: holds direction {}, expected {}", path, d.axis, axis));
+    require_file(d.method == first.method && d.settings.flow.tau == first.settings.flow.tau &&
+                     d.settings.flow.magic == first.settings.flow.magic &&
+                     d.settings.body_force == first.settings.body_force &&
+                     d.image.source_hash == first.image.source_hash &&
+                     d.image.voxel_size == first.image.voxel_size,
+                 fmt::format("{}: method, tau, magic, body force, voxel size or source hash differ from "
+                             "direction 0's; rerun the directions with one configuration",
+                             path));
+    runs.insert(runs.end(), d.runs.begin(), d.runs.end());
+  }
+  const lbm::DirectionFile& first = files.front();
+  lbm::PermeabilityResult result = lbm::assemble_permeability(first.method, runs, first.settings);
+  result.porosity = first.porosity;
+  result.fluid_voxels = first.fluid_voxels;
+  log_tensor(result, first.image.voxel_size, logger);
+  const std::string path = lbm::result_path(config.output_dir, "permeability", input);
+  const auto provenance =
+      h5::make_provenance("aniso-lbm collect", "", "aniso-lbm collect --input " + input, comm);
+  if (comm.is_root()) {
+    lbm::write_permeability(path, result, first.image, first.settings, provenance);
+    logger->info("wrote {}", path);
+  }
+  comm.barrier();
+  return 0;
+}
+
 int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   using namespace aniso;
   CLI::App app{"aniso-lbm: permeability tensor of a voxel image by D3Q19 TRT lattice Boltzmann "
@@ -19,8 +69,18 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   cli::CommonOptions options;
   cli::add_common_options(app, options, "aniso-lbm");
   std::string input;
-  app.add_option("--input", input, "voxel image written by aniso-voxel (HDF5)")->required();
+  int direction = -1;
+  app.add_option("--input", input, "voxel image written by aniso-voxel (HDF5)");
+  app.add_option("--direction", direction,
+                 "run only the flows along x_(D+1), D = 0, 1, 2, and write permeability_<stem>_directionD.h5 "
+                 "(job arrays; then `collect`)")
+      ->check(CLI::Range(0, 2));
+  auto* collect = app.add_subcommand("collect", "assemble permeability_<stem>.h5 from the three "
+                                                "permeability_<stem>_directionD.h5 of --direction runs");
+  collect->add_option("--input", input, "the voxel image the direction runs used (names the files)");
+  collect->fallthrough();
   if (auto code = cli::parse(app, argc, argv, comm)) return *code;
+  require_input(!input.empty(), "--input is required (the voxel image, HDF5)");
 
   const auto source = cli::load_config(options);
   config::Reader reader(source.table, source.name);
@@ -29,6 +89,7 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   if (cli::finish_config(reader, options, comm)) return 0;
   const Logger logger = make_logger("aniso-lbm", comm, options.log_level);
 
+  if (collect->parsed()) return collect_directions(input, config, options, comm);
   const h5::VoxelImage image = h5::read_voxel_image(input);
   logger->info("input '{}': {}x{}x{} voxels of {:.4g} m, porosity {:.4f}", input, image.shape[0],
                image.shape[1], image.shape[2], image.voxel_size,
@@ -43,16 +104,21 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const lbm::PetscSession petsc(config.petsc_options);
   const auto provenance =
       h5::make_provenance("aniso-lbm", reader.effective_toml(), cli::join_command_line(argc, argv), comm);
+  if (direction >= 0) {
+    // A run that diverges or does not converge throws here: nothing is written.
+    const auto runs = lbm::run_direction(image, config.permeability, direction, comm, logger);
+    const std::string direction_file = lbm::direction_path(config.output_dir, input, direction);
+    if (comm.is_root()) {
+      std::filesystem::create_directories(config.output_dir);
+      lbm::write_direction(direction_file, runs, direction, image, config.permeability, provenance);
+      logger->info("wrote {}", direction_file);
+    }
+    comm.barrier();
+    return 0;
+  }
   // A run that diverges or does not converge throws here: nothing is written.
   const lbm::PermeabilityResult result = lbm::compute_permeability(image, config.permeability, comm, logger);
-  const double h2 = image.voxel_size * image.voxel_size;
-  const Mat3 k = result.k_lattice * h2;
-  logger->info("K [m^2] = [{:.4e} {:.4e} {:.4e}; {:.4e} {:.4e} {:.4e}; {:.4e} {:.4e} {:.4e}]", k(0, 0),
-               k(0, 1), k(0, 2), k(1, 0), k(1, 1), k(1, 2), k(2, 0), k(2, 1), k(2, 2));
-  if (result.method == lbm::Method::periodic_body_force)
-    logger->info("symmetry error |K - K^T| / |K| = {:.3e}", result.symmetry_error);
-  else
-    logger->info("inverse problem (kijsolver) relative residual = {:.3e}", result.inverse_residual);
+  log_tensor(result, image.voxel_size, logger);
   if (comm.is_root()) {
     std::filesystem::create_directories(config.output_dir);
     lbm::write_permeability(path, result, image, config.permeability, provenance);

@@ -89,46 +89,69 @@ Mat3 solve_off_diagonal(const Vec3& diagonal, const std::vector<Vec3>& driving, 
   return k;
 }
 
+std::vector<FlowRun> run_direction(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                                   int axis, const mpi::Comm& comm, const Logger& logger) {
+  require_input(axis >= 0 && axis < 3, fmt::format("flow direction {} is not 0, 1 or 2", axis));
+  std::vector<FlowRun> runs;
+  if (settings.method == Method::periodic_body_force) {
+    runs.push_back(run_axis(image, settings, axis, FaceKind::periodic, comm, logger));
+  } else {
+    runs.push_back(run_axis(image, settings, axis, FaceKind::no_slip, comm, logger));
+    runs.push_back(run_axis(image, settings, axis, FaceKind::free_slip, comm, logger));
+  }
+  return runs;
+}
+
+PermeabilityResult assemble_permeability(Method method, std::vector<FlowRun> runs,
+                                         const PermeabilitySettings& settings) {
+  PermeabilityResult result;
+  result.method = method;
+  const double nu = make_trt_rates(settings.flow.tau, settings.flow.magic).viscosity();
+  const auto find = [&](int axis, FaceKind walls) -> const FlowRun& {
+    for (const FlowRun& run : runs)
+      if (run.axis == axis && run.walls == walls) return run;
+    throw InputError(fmt::format("the {} flow along x{} is missing", to_string(walls), axis + 1));
+  };
+  if (method == Method::periodic_body_force) {
+    for (int axis = 0; axis < 3; ++axis)
+      result.k_lattice.col(axis) =
+          nu * find(axis, FaceKind::periodic).result.mean_momentum / settings.body_force;
+    result.symmetry_error =
+        (result.k_lattice - result.k_lattice.transpose()).norm() / std::max(result.k_lattice.norm(), 1e-300);
+  } else {
+    Vec3 diagonal = Vec3::Zero();
+    std::vector<Vec3> drive, flux;
+    for (int axis = 0; axis < 3; ++axis) {
+      const FlowRun& walled = find(axis, FaceKind::no_slip);
+      diagonal[axis] = nu * walled.result.mean_momentum[axis] / driving(walled, settings.body_force)[axis];
+      const FlowRun& slip = find(axis, FaceKind::free_slip);
+      drive.push_back(driving(slip, settings.body_force));
+      flux.push_back(nu * slip.result.mean_momentum);
+    }
+    result.k_lattice = solve_off_diagonal(diagonal, drive, flux, result.inverse_residual);
+  }
+  result.runs = std::move(runs);
+  return result;
+}
+
 PermeabilityResult compute_permeability(const h5::VoxelImage& image, const PermeabilitySettings& settings,
                                         const mpi::Comm& comm, const Logger& logger) {
   require_input(settings.body_force > 0, "lbm.body_force must be positive");
-  PermeabilityResult result;
-  result.method = settings.method;
-  const double nu = make_trt_rates(settings.flow.tau, settings.flow.magic).viscosity();
+  std::vector<FlowRun> runs;
+  std::vector<std::vector<double>> velocity;
+  for (int axis = 0; axis < 3; ++axis)
+    for (FlowRun& run : run_direction(image, settings, axis, comm, logger)) {
+      if (settings.flow.keep_velocity) velocity.push_back(std::move(run.result.velocity));
+      run.result.velocity.clear();
+      runs.push_back(std::move(run));
+    }
+  PermeabilityResult result = assemble_permeability(settings.method, std::move(runs), settings);
+  result.velocity = std::move(velocity);
   std::size_t solid = 0;
   for (std::uint8_t v : image.phase)
     solid += v;
   result.fluid_voxels = static_cast<std::int64_t>(image.size() - solid);
   result.porosity = static_cast<double>(result.fluid_voxels) / static_cast<double>(image.size());
-  const auto keep = [&](FlowRun& run) {
-    if (settings.flow.keep_velocity) result.velocity.push_back(std::move(run.result.velocity));
-    run.result.velocity.clear();
-    result.runs.push_back(std::move(run));
-  };
-  if (settings.method == Method::periodic_body_force) {
-    for (int axis = 0; axis < 3; ++axis) {
-      FlowRun run = run_axis(image, settings, axis, FaceKind::periodic, comm, logger);
-      result.k_lattice.col(axis) = nu * run.result.mean_momentum / settings.body_force;
-      keep(run);
-    }
-    result.symmetry_error =
-        (result.k_lattice - result.k_lattice.transpose()).norm() / std::max(result.k_lattice.norm(), 1e-300);
-    return result;
-  }
-  Vec3 diagonal = Vec3::Zero();
-  for (int axis = 0; axis < 3; ++axis) {
-    FlowRun run = run_axis(image, settings, axis, FaceKind::no_slip, comm, logger);
-    diagonal[axis] = nu * run.result.mean_momentum[axis] / driving(run, settings.body_force)[axis];
-    keep(run);
-  }
-  std::vector<Vec3> drive, flux;
-  for (int axis = 0; axis < 3; ++axis) {
-    FlowRun run = run_axis(image, settings, axis, FaceKind::free_slip, comm, logger);
-    drive.push_back(driving(run, settings.body_force));
-    flux.push_back(nu * run.result.mean_momentum);
-    keep(run);
-  }
-  result.k_lattice = solve_off_diagonal(diagonal, drive, flux, result.inverse_residual);
   return result;
 }
 

@@ -52,6 +52,15 @@ struct PermeabilityResult {
   std::vector<std::vector<double>> velocity; ///< rank 0, keep_velocity only: one field per run
 };
 
+/// The flow runs along one axis: one periodic run, or (paper method) the no-slip and the free-slip run.
+std::vector<FlowRun> run_direction(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                                   int axis, const mpi::Comm& comm, const Logger& logger);
+
+/// The tensor of `method` from the runs of all three axes, in any order (InputError if one is missing).
+/// Shared by compute_permeability and `aniso-lbm collect`; porosity and velocity are left to the caller.
+PermeabilityResult assemble_permeability(Method method, std::vector<FlowRun> runs,
+                                         const PermeabilitySettings& settings);
+
 /// Runs the method's flows on the image (collective; identical image on every rank; PETSc initialized).
 PermeabilityResult compute_permeability(const h5::VoxelImage& image, const PermeabilitySettings& settings,
                                         const mpi::Comm& comm, const Logger& logger);

@@ -1,6 +1,7 @@
 #!/bin/bash
 # End-to-end checks of aniso-lbm on a small image: a run writes permeability_<stem>.h5 with the
-# contract's datasets; a diverging run exits 4 (numerical failure), names the cause, and leaves the
+# contract's datasets; --direction runs plus collect give the same tensor (a missing direction
+# file is named, exit 3); a diverging run exits 4 (numerical failure), names the cause, and leaves the
 # earlier result untouched; a run past its step limit exits 5.
 # usage: cli_run.sh ANISO_LBM MAKE_LBM_IMAGE MPIEXEC
 set -euo pipefail
@@ -30,6 +31,25 @@ with h5py.File(sys.argv[1]) as f:
     assert (np.diag(kl) > 0).all(), kl
 PY
 checksum=$(md5sum < "$result")
+
+# Job-array form: one direction per run, then collect; the same tensor to the last bit.
+for d in 0 1 2; do
+  "$lbm" --input "$work/cell.h5" --direction $d --set lbm.output_dir="\"$work/split\"" \
+    --set lbm.convergence.tolerance=1e-4 > "$work/split$d.log" 2>&1 || { cat "$work/split$d.log"; fail "direction $d failed"; }
+done
+"$lbm" collect --input "$work/cell.h5" --set lbm.output_dir="\"$work/split\"" > "$work/collect.log" 2>&1 \
+  || { cat "$work/collect.log"; fail "collect failed"; }
+/usr/bin/python3 - "$result" "$work/split/permeability_cell.h5" <<'PY'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1]) as a, h5py.File(sys.argv[2]) as b:
+    assert np.array_equal(a["permeability/K"][...], b["permeability/K"][...]), (a["permeability/K"][...], b["permeability/K"][...])
+PY
+rm "$work/split/permeability_cell_direction1.h5"
+set +e
+"$lbm" collect --input "$work/cell.h5" --set lbm.output_dir="\"$work/split\"" > "$work/collect2.log" 2>&1
+code=$?
+set -e
+[ "$code" -eq 3 ] && grep -q "direction1" "$work/collect2.log" || { cat "$work/collect2.log"; fail "collect without a direction file exited $code, expected 3 naming it"; }
 
 set +e
 "$lbm" --input "$work/cell.h5" --set lbm.output_dir="\"$work\"" --set lbm.tau=0.5005 --set lbm.body_force=0.05 \
