@@ -59,11 +59,11 @@ stop_cluster() {
 }
 trap stop_cluster EXIT
 trap 'exit 130' INT TERM
-# ctest kills a test that overruns its TIMEOUT (600 s) with SIGKILL, which no
+# ctest kills a test that overruns its TIMEOUT (900 s) with SIGKILL, which no
 # trap sees, and bash runs a trap only once the command in progress ends. So a
 # watchdog stops the daemons itself before that, then ends the test.
 (
-  sleep "${SLURM_TEST_LIMIT:-540}"
+  sleep "${SLURM_TEST_LIMIT:-840}"
   echo "slurm_campaign: FAIL: over the time limit; stopping the cluster" >&2
   "$cluster" stop
   kill -TERM $$
