@@ -52,7 +52,8 @@ PY
 )
 stop_cluster() {
   local code=$?
-  [[ -z ${watchdog:-} ]] || kill "$watchdog" 2>/dev/null || true
+  # The watchdog's sleep must go too: it would hold ctest's output pipe open until it ends.
+  [[ -z ${watchdog:-} ]] || { pkill -P "$watchdog" 2>/dev/null; kill "$watchdog" 2>/dev/null; } || true
   ANISO_SLURM_KEEP=0 "$cluster" stop || true
   rm -rf "$ANISO_SLURM_DIR"
   exit $code
@@ -63,7 +64,7 @@ trap 'exit 130' INT TERM
 # trap sees, and bash runs a trap only once the command in progress ends. So a
 # watchdog stops the daemons itself before that, then ends the test.
 (
-  sleep "${SLURM_TEST_LIMIT:-840}"
+  sleep "${SLURM_TEST_LIMIT:-840}" </dev/null >/dev/null 2>&1
   echo "slurm_campaign: FAIL: over the time limit; stopping the cluster" >&2
   "$cluster" stop
   kill -TERM $$
