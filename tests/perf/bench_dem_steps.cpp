@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
   if (!mpi::Comm::world().is_root()) return 0;
   std::printf("ranks %d particles %.0f contacts %.0f steps %ld repeats %d median %.4f s (min %.4f max %.4f): "
               "%.4g particle-steps/s, %.4g contact-steps/s\n",
-              mpi::Comm::world().size(), n_particles, contacts, n_steps, n_repeats, median, seconds.front(), seconds.back(),
-              n_particles * static_cast<double>(n_steps) / median,
+              mpi::Comm::world().size(), n_particles, contacts, n_steps, n_repeats, median, seconds.front(),
+              seconds.back(), n_particles * static_cast<double>(n_steps) / median,
               contacts * static_cast<double>(n_steps) / median);
   return 0;
 }
