@@ -4,4 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh demo
-exec make demo "$@"
+# The analyses of different checkpoints are independent: run them side by side.
+exec make -j "$(nproc)" demo "$@"

@@ -2,7 +2,9 @@
 """Facts about a campaign that the Makefile and the SLURM submitter both need.
 
 usage:
-  campaign.py checkpoints CONFIG BIN   the load checkpoints' stems (load_000 ...), from the effective config
+  campaign.py checkpoints CONFIG BIN [STAGE]
+                                       the load checkpoints' stems (load_000 ...), from the effective config;
+                                       with STAGE (probe, voxel or lbm) only those [workflow] gives that stage
   campaign.py stages BIN               the analysis stages built with the command line the workflow calls
   campaign.py load-input OUT CONFIG    the arguments of `aniso-dem load` that continue an interrupted run
 
@@ -11,6 +13,18 @@ they offer (lbm-directions: one LBM run per flow direction); for every other
 stage it writes one line to stderr saying why it is skipped. A stage counts as built when its
 executable exists, is no longer the stub of common/stage_stub.cpp (which only
 validates its input) and its --help shows the options the workflow passes.
+
+The campaign's own section of the config, all keys optional:
+
+  [workflow]
+  probe_strains = [...]   checkpoint strains that get the probes (default: every checkpoint)
+  voxel_strains = [...]   checkpoint strains that get the voxel image and void morphology (default: every)
+  lbm_strains = [...]     checkpoint strains that get the permeability; each must be in voxel_strains
+                          (default: voxel_strains)
+
+Every strain named must be one of dem.load.checkpoint_strains (relative 1e-9); an
+unknown key, a value that is not a list of numbers, or a strain that is not a
+checkpoint stops with a message naming the key and the value.
 
 `load-input` resumes from the newest checkpoint of this run that history.h5
 already covers (history.h5 is rewritten just after each checkpoint, so a kill
@@ -43,7 +57,12 @@ def fail(message):
     sys.exit(f"campaign.py: {message}")
 
 
-def checkpoint_stems(config, bin_dir):
+# [workflow] keys: the stage they select checkpoints for, and the key whose strains bound them.
+WORKFLOW_KEYS = {"probe_strains": None, "voxel_strains": None, "lbm_strains": "voxel_strains"}
+SELECTING_STAGES = {"probe": "probe_strains", "voxel": "voxel_strains", "lbm": "lbm_strains"}
+
+
+def checkpoint_strains(config, bin_dir):
     dem = os.path.join(bin_dir, "dem", "aniso-dem")
     if not os.access(dem, os.X_OK):
         fail(f"{dem} not found: build it first (make build)")
@@ -51,8 +70,55 @@ def checkpoint_stems(config, bin_dir):
                              capture_output=True, text=True)
     if printed.returncode != 0:
         fail(f"'{dem} load --config {config} --print-config' failed:\n{printed.stderr}")
-    strains = tomllib.loads(printed.stdout)["dem"]["load"]["checkpoint_strains"]
-    return [f"load_{index:03d}" for index in range(len(strains))]
+    return tomllib.loads(printed.stdout)["dem"]["load"]["checkpoint_strains"]
+
+
+def workflow_section(config):
+    with open(config, "rb") as f:
+        section = tomllib.load(f).get("workflow", {})
+    if not isinstance(section, dict):
+        fail(f"{config}: [workflow] must be a table, not {section!r}")
+    for key in section:
+        if key not in WORKFLOW_KEYS:
+            fail(f"{config}: unknown key workflow.{key}; allowed: {', '.join(WORKFLOW_KEYS)}")
+    return section
+
+
+def strain_indices(config, key, values, strains):
+    """Indices into `strains` of the strains listed under workflow.`key`."""
+    if not isinstance(values, list) or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                               for v in values):
+        fail(f"{config}: workflow.{key} = {values!r}: expected a list of checkpoint strains")
+    indices = []
+    for value in values:
+        matches = [k for k, s in enumerate(strains) if abs(s - value) <= 1e-9 * max(abs(s), abs(value))]
+        if not matches:
+            fail(f"{config}: workflow.{key} = {values!r}: {value!r} is not one of "
+                 f"dem.load.checkpoint_strains {strains}")
+        indices.append(matches[0])
+    return sorted(set(indices))
+
+
+def selected_indices(config, strains):
+    """For each [workflow] key, the checkpoint indices it selects (validated)."""
+    section = workflow_section(config)
+    selected = {}
+    for key, bound in WORKFLOW_KEYS.items():  # a key's bound comes before it
+        default = selected[bound] if bound else list(range(len(strains)))
+        selected[key] = strain_indices(config, key, section[key], strains) if key in section else default
+        if bound and not set(selected[key]) <= set(selected[bound]):
+            fail(f"{config}: workflow.{key} = {section[key]!r}: every strain must also be in workflow.{bound}")
+    return selected
+
+
+def checkpoint_stems(config, bin_dir, stage=None):
+    strains = checkpoint_strains(config, bin_dir)
+    indices = range(len(strains))
+    if stage is not None:
+        if stage not in SELECTING_STAGES:
+            fail(f"no checkpoint selection for stage {stage!r}; allowed: {', '.join(SELECTING_STAGES)}")
+        indices = selected_indices(config, strains)[SELECTING_STAGES[stage]]
+    return [f"load_{index:03d}" for index in indices]
 
 
 def help_text(executable, arguments):
@@ -118,8 +184,8 @@ def load_input(out, config):
 
 
 def main(argv):
-    if len(argv) == 4 and argv[1] == "checkpoints":
-        print(" ".join(checkpoint_stems(argv[2], argv[3])))
+    if len(argv) in (4, 5) and argv[1] == "checkpoints":
+        print(" ".join(checkpoint_stems(*argv[2:])))
     elif len(argv) == 3 and argv[1] == "stages":
         print(" ".join(usable_stages(argv[2])))
     elif len(argv) == 4 and argv[1] == "load-input":

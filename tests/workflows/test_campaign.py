@@ -114,6 +114,67 @@ class Stages(unittest.TestCase):
             self.assertIn("aniso-dem not found", result.stderr)
 
 
+def e2e_with_workflow(folder, section):
+    """The e2e config (checkpoints at strains 1e-4, 5e-3, 0.01) plus a [workflow] section."""
+    with open(os.path.join(WORKFLOWS, "configs", "e2e.toml")) as f:
+        text = f.read()
+    path = os.path.join(folder, "c.toml")
+    with open(path, "w") as f:
+        f.write(text + "\n[workflow]\n" + section + "\n")
+    return path
+
+
+class CheckpointSelection(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def stems(self, section, stage):
+        result = campaign("checkpoints", e2e_with_workflow(self.dir.name, section), BUILD, stage)
+        return result.returncode, result.stdout.split(), result.stderr
+
+    def test_every_checkpoint_by_default(self):
+        for stage in ("probe", "voxel", "lbm"):
+            self.assertEqual(self.stems("", stage)[1], ["load_000", "load_001", "load_002"])
+
+    def test_strains_select_checkpoints_and_lbm_follows_voxel(self):
+        section = "probe_strains = [0.01, 1e-4]\nvoxel_strains = [5e-3, 0.01]"
+        self.assertEqual(self.stems(section, "probe")[1], ["load_000", "load_002"])
+        self.assertEqual(self.stems(section, "voxel")[1], ["load_001", "load_002"])
+        self.assertEqual(self.stems(section, "lbm")[1], ["load_001", "load_002"])
+        self.assertEqual(self.stems(section + "\nlbm_strains = [0.01]", "lbm")[1], ["load_002"])
+        self.assertEqual(self.stems("probe_strains = []", "probe")[1], [])
+
+    def test_bad_sections_are_refused_with_the_key_named(self):
+        cases = {
+            "probe_strains = [0.02]": "workflow.probe_strains = [0.02]: 0.02 is not one of dem.load.checkpoint_strains",
+            "voxel_strains = 0.01": "workflow.voxel_strains = 0.01: expected a list of checkpoint strains",
+            "probe_strain = [0.01]": "unknown key workflow.probe_strain",
+            "voxel_strains = [0.01]\nlbm_strains = [5e-3]": "every strain must also be in workflow.voxel_strains",
+        }
+        for section, message in cases.items():
+            code, _, log = self.stems(section, "lbm" if "lbm" in section else "probe")
+            self.assertNotEqual(code, 0, section)
+            self.assertIn(message, log, section)
+
+    def test_dry_run_plans_only_the_selected_analyses(self):
+        bin_dir = os.path.join(self.dir.name, "bin")
+        os.mkdir(bin_dir)
+        fake_bin(bin_dir, doubles=["fabric", "probe", "voxel", "lbm"])
+        config = e2e_with_workflow(self.dir.name, "probe_strains = [0.01]\nvoxel_strains = [1e-4, 0.01]\n"
+                                                   "lbm_strains = [0.01]")
+        result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config", config,
+                                 "--out", os.path.join(self.dir.name, "run"), "--bin", bin_dir, "--dry-run"],
+                                capture_output=True, text=True)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        names = [re.search(r"--job-name=aniso-(\S+)", line).group(1) for line in result.stdout.splitlines()]
+        self.assertEqual(names, ["prepare", "load", "fabric", "voxel-load_000", "probe-load_002",
+                                 "probe-collect-load_002", "voxel-load_002", "lbm-load_002", "lbm-collect-load_002",
+                                 "series", "report"])
+
+
 class SubmitDryRun(unittest.TestCase):
     def test_plan_has_arrays_and_dependencies(self):
         with tempfile.TemporaryDirectory() as folder:

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""Directional stiffness against loading strain (the paper's Fig. C123).
+"""Directional stiffness against loading strain (the paper's Figs. C123 and A).
 
 Reads every probe_<stem>.h5 in a folder (one per checkpoint of a loading run), sorts them by
-the checkpoint's loading strain and charts C11/K_C, C22/K_C, C33/K_C and K_C against strain.
+the checkpoint's loading strain and charts C11/K_C, C22/K_C, C33/K_C, (C11 - C33)/K_C,
+(C22 - C33)/K_C and K_C against strain.
 The numbers go to a CSV beside the figure.
 
 usage: probe_series.py PROBE_FOLDER OUTPUT.png
@@ -32,7 +33,7 @@ def main():
     K = np.array([r["K_C"] for r in results])
     C = np.array([np.diag(r["C"]) for r in results])
     D = np.array([np.abs(r["D"]).max() for r in results])
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(15, 4.2))
     x = np.maximum(strain, 1e-6)
     for i in range(3):
         left.semilogx(x, C[:, i] / K, "o-", label=f"$C_{{{i + 1}{i + 1}}}/K_C$")
@@ -40,6 +41,15 @@ def main():
     left.set_ylabel("$C_{ii}/K_C$")
     left.legend()
     left.grid(alpha=0.3)
+    # Paper Fig. A: the stiffness deviator across x1-x3 and x2-x3, normalized by K_C.
+    middle.semilogx(x, (C[:, 0] - C[:, 2]) / K, "o-", label="$(C_{11}-C_{33})/K_C$")
+    middle.semilogx(x, (C[:, 1] - C[:, 2]) / K, "s--", label="$(C_{22}-C_{33})/K_C$")
+    middle.axhline(0, color="0.5", lw=0.8)
+    middle.set_xlabel(r"loading strain $-\varepsilon_{11}$")
+    middle.set_title("stiffness anisotropy (paper Fig. A)", fontsize=9)
+    middle.legend()
+    middle.grid(alpha=0.3)
+    left.set_title("directional stiffness (paper Fig. C123)", fontsize=9)
     right.semilogx(x, K / 1e6, "ko-", label="$K_C$")
     right.semilogx(x, D / 1e6, "s--", color="C3", label=r"max $|D_{ij}|$")
     right.set_xlabel(r"loading strain $-\varepsilon_{11}$")

@@ -70,7 +70,10 @@ def campaign_facts(args):
             fail(f"campaign.py {' '.join(words)} failed")
         return result.stdout.strip()
 
-    return {"CHECKPOINTS": ask("checkpoints", args.config, args.bin), "STAGES": ask("stages", args.bin)}
+    facts = {"CHECKPOINTS": ask("checkpoints", args.config, args.bin), "STAGES": ask("stages", args.bin)}
+    for stage in ("probe", "voxel", "lbm"):  # the checkpoints the config's [workflow] gives each stage
+        facts[f"{stage.upper()}_CHECKPOINTS"] = ask("checkpoints", args.config, args.bin, stage)
+    return facts
 
 
 def make_variables(args, facts):

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# ParaView reads aniso's XDMF output: renders a voxel image of the e2e campaign
+# with pvpython, headless (xvfb-run: Debian's ParaView renders through X), and
+# checks that the PNG shows the solid (not a blank frame). Also checks that
+# h5dump reads every HDF5 file the campaign wrote.
+#
+# usage: paraview_render.sh SOURCE_DIR RUN_DIR WORK_DIR
+set -euo pipefail
+source_dir=$1 run=$2 work=$3
+fail() { echo "paraview_render: FAIL: $*" >&2; exit 1; }
+for tool in pvpython xvfb-run h5dump; do
+  command -v "$tool" > /dev/null || fail "$tool not found: run scripts/install-deps.sh test (python3-paraview, xvfb, hdf5-tools)"
+done
+rm -rf "$work"
+mkdir -p "$work"
+
+count=0
+for file in "$run"/*.h5; do
+  h5dump -H "$file" > /dev/null || fail "h5dump -H cannot read $file"
+  count=$((count + 1))
+done
+[ "$count" -ge 10 ] || fail "only $count HDF5 files in $run: did the e2e campaign run?"
+echo "paraview_render: h5dump -H reads all $count HDF5 files of $run"
+
+image=$(ls "$run"/image_*.xmf | tail -1)
+xvfb-run -a -s "-screen 0 1024x768x24" pvpython "$source_dir/tests/workflows/render_xdmf.py" "$image" \
+  "$work/render.png" > "$work/render.log" 2>&1 || fail "pvpython could not render $image: $(tail -5 "$work/render.log")"
+grep "render_xdmf.py:" "$work/render.log"
+/usr/bin/python3 - "$work/render.png" <<'PY' || fail "the rendered PNG is blank"
+import sys
+import matplotlib.image
+import numpy as np
+rgb = matplotlib.image.imread(sys.argv[1])[..., :3]
+background = rgb[0, 0]
+drawn = np.any(np.abs(rgb - background) > 0.05, axis=-1).mean()
+colours = len(np.unique((rgb * 255).astype(np.uint8).reshape(-1, 3), axis=0))
+print(f"paraview_render: {sys.argv[1]}: {rgb.shape[1]}x{rgb.shape[0]}, {100 * drawn:.1f}% of the pixels drawn, "
+      f"{colours} colours")
+assert drawn > 0.05 and colours > 10, "blank or flat frame"
+PY
+echo "paraview_render: all checks passed"
