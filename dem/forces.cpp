@@ -7,14 +7,28 @@ namespace aniso::dem {
 
 OvoidPairGeometry ovoid_pair_geometry(const Particles& particles, std::uint32_t i, std::uint32_t j,
                                       const Vec3& d, const Vec3& guess, const PairProperties& properties,
-                                      const ContactInput& input, bool stop_if_separated) {
+                                      const ContactInput& input, bool stop_if_separated, Vec3* separating) {
   const ConvexBody a =
       input.shapes->body(particles.radius[i], particles.aspect_ratio[i], particles.orientation[i]);
   const ConvexBody b =
       input.shapes->body(particles.radius[j], particles.aspect_ratio[j], particles.orientation[j]);
   OvoidPairGeometry result;
+  if (separating != nullptr && !separating->isZero(0.0)) {
+    // phi(n) < 0 proves the pair apart, whatever n: the answer is the one Newton would give.
+    const double gap_function =
+        support_value(a, *separating) + support_value(b, -*separating) - d.dot(*separating);
+    if (gap_function < 0) {
+      result.contact.overlap = gap_function;
+      result.contact.normal = *separating;
+      result.contact.converged = true;
+      result.hertz_radius = properties.effective_radius;
+      return result;
+    }
+  }
   result.contact =
       convex_contact(a, b, d, guess, stop_if_separated, input.hertz_radius == HertzRadius::curvature);
+  if (separating != nullptr)
+    *separating = result.contact.overlap > 0 ? Vec3::Zero() : Vec3(result.contact.normal);
   result.hertz_radius =
       input.hertz_radius == HertzRadius::curvature && result.contact.overlap > 0
           ? elliptic_hertz_radius(result.contact.principal_radii[0], result.contact.principal_radii[1])
@@ -47,6 +61,7 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
   auto& history = neighbors.history();
   auto& records = neighbors.records();
   const auto& properties = neighbors.properties();
+  auto& separating = neighbors.separating_normals();
   const ContactConstants constants = contact_constants(material);
   ForcePass pass;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -86,7 +101,8 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
       branch = distance * normal;
     } else {
       const Vec3 guess = history[k].normal.isZero(0.0) ? d : history[k].normal;
-      const OvoidPairGeometry geometry = ovoid_pair_geometry(particles, i, j, d, guess, pair, input, true);
+      const OvoidPairGeometry geometry =
+          ovoid_pair_geometry(particles, i, j, d, guess, pair, input, true, &separating[k]);
       pass.newton_iterations += geometry.contact.iterations;
       pass.n_unconverged += geometry.contact.converged ? 0 : 1;
       if (!(geometry.contact.overlap > 0)) {

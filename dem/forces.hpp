@@ -35,12 +35,16 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
 
 /// Geometry of the pair (i, j) with centre separation d (minimum image), for an ovoid on either
 /// side; `guess` is the normal to start from. The Hertz radius follows `input.hertz_radius`.
+/// With `separating` (the pair's cached separating direction, zero for none), a pair that this
+/// direction still proves apart is answered at once; the cache is then updated: the new
+/// separating direction if the pair is apart, zero if it touches.
 struct OvoidPairGeometry {
   ContactGeometry contact;
   double hertz_radius = 0;
 };
 OvoidPairGeometry ovoid_pair_geometry(const Particles& particles, std::uint32_t i, std::uint32_t j,
                                       const Vec3& d, const Vec3& guess, const PairProperties& properties,
-                                      const ContactInput& input, bool stop_if_separated);
+                                      const ContactInput& input, bool stop_if_separated,
+                                      Vec3* separating = nullptr);
 
 } // namespace aniso::dem

@@ -112,11 +112,15 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell,
   for (std::size_t k = 0; k < fresh.size(); ++k)
     fresh_ids[k] = {particles.id[fresh[k].i], particles.id[fresh[k].j]};
   std::vector<ContactHistory> fresh_history(fresh.size());
+  std::vector<Vec3> fresh_separating(fresh.size(), Vec3::Zero());
   std::size_t old_k = 0;
   for (std::size_t k = 0; k < fresh.size() && old_k < pair_ids_.size(); ++k) {
     while (old_k < pair_ids_.size() && pair_ids_[old_k] < fresh_ids[k])
       ++old_k;
-    if (old_k < pair_ids_.size() && pair_ids_[old_k] == fresh_ids[k]) fresh_history[k] = history_[old_k];
+    if (old_k < pair_ids_.size() && pair_ids_[old_k] == fresh_ids[k]) {
+      fresh_history[k] = history_[old_k];
+      fresh_separating[k] = separating_normals_[old_k];
+    }
   }
   for (const HistoryRecord& record : carried) {
     const std::array<std::uint64_t, 2> key{record.id_i, record.id_j};
@@ -127,6 +131,7 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell,
   pair_ids_ = std::move(fresh_ids);
   pairs_ = std::move(fresh);
   history_ = std::move(fresh_history);
+  separating_normals_ = std::move(fresh_separating);
   records_.assign(pairs_.size(), ContactRecord{});
   properties_.resize(pairs_.size());
   for (std::size_t k = 0; k < pairs_.size(); ++k) {

@@ -59,6 +59,10 @@ public:
   [[nodiscard]] const std::vector<PairProperties>& properties() const { return properties_; }
   [[nodiscard]] std::vector<ContactRecord>& records() { return records_; }
   [[nodiscard]] const std::vector<ContactRecord>& records() const { return records_; }
+  /// Per pair, the last direction that proved an ovoid pair apart (zero: none). A cache for the
+  /// narrow phase's early exit only: no result depends on it, so it is not part of the state that
+  /// checkpoints and migrating particles carry.
+  [[nodiscard]] std::vector<Vec3>& separating_normals() { return separating_normals_; }
   [[nodiscard]] double skin() const { return skin_; }
   [[nodiscard]] std::int64_t n_builds() const { return n_builds_; }
 
@@ -71,6 +75,7 @@ private:
   std::vector<ContactHistory> history_;
   std::vector<ContactRecord> records_;
   std::vector<PairProperties> properties_;
+  std::vector<Vec3> separating_normals_;
   std::vector<std::array<std::uint64_t, 2>>
       pair_ids_; ///< ids of pairs_, for carrying history across migration
   double global_max_radius_ = 0;

@@ -33,6 +33,7 @@ struct Support {
   double value = 0;          ///< h(n) = max over the body of x.n (centre at the origin)
   Vec3 point = Vec3::Zero(); ///< the surface point with outward normal n
   Mat3 radii = Mat3::Zero(); ///< Hessian of h at n: radius-of-curvature tensor on the tangent plane
+  int piece = 0; ///< smooth piece of the surface: +1 / -1 the cap on the +/- axis side, 0 the band
 };
 
 /// Support of `body` in the unit direction n.
