@@ -11,6 +11,7 @@
 #   PEER_VISCOUS  LIGGGHTS global viscous drag gamma [kg/s] that keeps the packing
 #                 jammed without aniso's tangential contact history (default 0.02)
 #   PEER_RANKS    LIGGGHTS rank counts to time (default "1 2")
+#   ANISO_RANKS   aniso rank counts to time (default "1 2"; the 1 -> 2 speed-up is printed)
 #   CONTACT_TOL   allowed relative difference of the start contact counts (default 0.03)
 set -euo pipefail
 
@@ -21,6 +22,7 @@ work=${4:-/tmp/aniso-dem-peer}
 build=${ANISO_BUILD:-/work/build}
 viscous=${PEER_VISCOUS:-0.02}
 ranks_list=${PEER_RANKS:-"1 2"}
+aniso_ranks=${ANISO_RANKS:-"1 2"}
 tol=${CONTACT_TOL:-0.03}
 here=$(cd "$(dirname "$0")" && pwd)
 python=/usr/bin/python3
@@ -96,7 +98,9 @@ echo "packing: $n_particles particles, $n_contacts contacts, dt = $dt s; $steps 
 echo "LIGGGHTS: E = $young Pa, nu = $nu, e = $restitution, mu = $mu, skin = $skin m, viscous $viscous kg/s" >&2
 # Interleave the codes round by round so that slow drifts of the machine hit all alike.
 for ((r = 1; r <= repeats; ++r)); do
-  "$bench" "$checkpoint" "$steps" 1 > "$work/aniso_1_$r.out" 2>&1
+  for np in $aniso_ranks; do
+    mpiexec --oversubscribe -n "$np" "$bench" "$checkpoint" "$steps" 1 > "$work/aniso_${np}_$r.out" 2>&1
+  done
   for np in $ranks_list; do
     if [[ $np == 1 ]]; then
       liggghts -in "$work/bench.in" -log none -nocite > "$work/liggghts_${np}_$r.out" 2>&1
@@ -109,9 +113,9 @@ for ((r = 1; r <= repeats; ++r)); do
 done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
 
-"$python" - "$work" "$n_particles" "$n_contacts" "$steps" "$tol" "$ranks_list" <<'EOF'
+"$python" - "$work" "$n_particles" "$n_contacts" "$steps" "$tol" "$ranks_list" "$aniso_ranks" <<'EOF'
 import glob, re, statistics, sys
-work, n, contacts0, steps, tol, ranks_list = sys.argv[1:]
+work, n, contacts0, steps, tol, ranks_list, aniso_ranks = sys.argv[1:]
 n, contacts0, steps, tol = int(n), int(contacts0), int(steps), float(tol)
 rows, ok = [], True
 
@@ -130,7 +134,8 @@ def liggghts(path):
         sys.exit(f"{path}: LIGGGHTS failed:\n{text[-3000:]}")
     return float(loops[-1][0]), float(thermo[0][1]), float(thermo[-1][1])
 
-results = {("aniso", 1): [aniso(p) for p in sorted(glob.glob(f"{work}/aniso_1_*.out"))]}
+results = {("aniso", int(np)): [aniso(p) for p in sorted(glob.glob(f"{work}/aniso_{np}_*.out"))]
+           for np in aniso_ranks.split()}
 for np in ranks_list.split():
     results[("LIGGGHTS", int(np))] = [liggghts(p) for p in sorted(glob.glob(f"{work}/liggghts_{np}_*.out"))]
 
@@ -151,6 +156,9 @@ for (code, np), runs in results.items():
 print()
 a, a_best = medians[("aniso", 1)], best[("aniso", 1)]
 for (code, np), med in medians.items():
+    if code == "aniso" and np > 1:
+        print(f"aniso speed-up 1 -> {np} ranks: {med / a:.2f} of medians, {best[(code, np)] / a_best:.2f} of the "
+              "fastest runs")
     if code != "aniso":
         print(f"ratio aniso (1 rank) / LIGGGHTS ({np} rank{'s' if np > 1 else ''}), per core: "
               f"{a / (med / np):.2f} of medians, {a_best / (best[(code, np)] / np):.2f} of the fastest runs")
