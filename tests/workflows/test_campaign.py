@@ -4,6 +4,7 @@ workflows/slurm/submit.py --dry-run (the job plan, without a SLURM cluster).
 
 usage: test_campaign.py SOURCE_DIR BUILD_DIR
 """
+import glob
 import os
 import re
 import subprocess
@@ -106,6 +107,17 @@ class Stages(unittest.TestCase):
         result = campaign("checkpoints", os.path.join(WORKFLOWS, "configs", "demo.toml"), BUILD)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(result.stdout.split(), [f"load_{k:03d}" for k in range(12)])
+
+    def test_every_shipped_config_is_valid(self):
+        configs = sorted(glob.glob(os.path.join(WORKFLOWS, "configs", "*.toml")))
+        self.assertGreaterEqual(len(configs), 6)  # demo, e2e, paper spheres and three ovoid shapes
+        for config in configs:
+            dry = subprocess.run([os.path.join(BUILD, "dem", "aniso-dem"), "prepare", "--config", config, "--dry-run",
+                                  "--log-level", "error"], capture_output=True, text=True)
+            self.assertEqual(dry.returncode, 0, f"{config}: {dry.stderr}")
+            for stage in ("probe", "voxel", "lbm"):
+                result = campaign("checkpoints", config, BUILD, stage)
+                self.assertEqual(result.returncode, 0, f"{config}: {result.stderr}")
 
     def test_missing_dem_is_named(self):
         with tempfile.TemporaryDirectory() as folder:
