@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace aniso::mpi {
 namespace {
@@ -16,7 +17,14 @@ void check(int status, const char* what) {
 Environment::Environment(int& argc, char**& argv) {
   int initialized = 0;
   MPI_Initialized(&initialized);
-  if (!initialized) check(MPI_Init(&argc, &argv), "MPI_Init");
+  if (!initialized) {
+    // A program started without mpiexec is an Open MPI singleton, which by default forks an
+    // orted daemon first; where the host name does not resolve (a container or chroot without
+    // /etc/hosts) that waits about 5 s for DNS. aniso never spawns processes, so the isolated
+    // singleton does. The user's own setting wins; under mpiexec the key has no effect.
+    setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+    check(MPI_Init(&argc, &argv), "MPI_Init");
+  }
   // Errors come back as codes so that we can throw with a message instead of aborting silently.
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
 }
