@@ -56,7 +56,8 @@ def main():
     right.set_ylabel("MPa")
     right.legend()
     right.grid(alpha=0.3)
-    fig.suptitle(f"incremental stiffness C of {folder}", fontsize=10)
+    # No folder in the title: figures must be identical for identical results wherever they run.
+    fig.suptitle("incremental stiffness C from the oedometric probes", fontsize=10)
     fig.tight_layout()
     fig.savefig(output, dpi=110)
     csv = os.path.splitext(output)[0] + ".csv"
