@@ -35,6 +35,18 @@ def column(rows, name):
     return np.array([float(r[name]) for r in rows])
 
 
+def print_table(header, rows):
+    """A Markdown table: the header, the separator, then one line per row of cell strings."""
+    print("| " + " | ".join(header) + " |")
+    print("|" + " --- |" * len(header))
+    for row in rows:
+        print("| " + " | ".join(row) + " |")
+
+
+def percent(row):
+    return f"{100 * float(row['strain']):.3g}%"
+
+
 def trend(values, tolerance):
     change = values[-1] - values[0]
     return "rises" if change > tolerance else "falls" if change < -tolerance else "stays level"
@@ -48,16 +60,17 @@ def dem_section(folder, h):
     steady = strain > min(0.002, strain[-1] / 2)
     servo = np.abs(h["servo_error"][steady]) if steady.any() else np.abs(h["servo_error"])
     print("## DEM: biaxial plane strain at constant mean stress\n")
-    print("| quantity | value |\n| --- | --- |")
-    print(f"| void ratio at the start of loading | {h['void_ratio'][0]:.4f} (paper: 0.556) |")
-    print(f"| coordination number at start (without rattlers) | {h['coordination'][0]:.3f} "
-          f"({h['coordination_no_rattlers'][0]:.3f}) |")
-    print(f"| peak stress ratio (s11 - s33)/p | {ratio[peak]:.4f} at -eps11 = {100 * strain[peak]:.3g}% |")
-    print(f"| final strain | {100 * strain[-1]:.3g}% |")
-    print(f"| final void ratio | {h['void_ratio'][-1]:.4f} |")
-    print(f"| mean-stress servo error after the first 0.2% strain: median, max | "
-          f"{100 * np.median(servo):.3f}%, {100 * servo.max():.3f}% |")
-    print(f"| inertial number (median) | {np.median(h['inertial_number']):.3g} |\n")
+    print_table(["quantity", "value"], [
+        ["void ratio at the start of loading", f"{h['void_ratio'][0]:.4f} (paper: 0.556)"],
+        ["coordination number at start (without rattlers)",
+         f"{h['coordination'][0]:.3f} ({h['coordination_no_rattlers'][0]:.3f})"],
+        ["peak stress ratio (s11 - s33)/p", f"{ratio[peak]:.4f} at -eps11 = {100 * strain[peak]:.3g}%"],
+        ["final strain", f"{100 * strain[-1]:.3g}%"],
+        ["final void ratio", f"{h['void_ratio'][-1]:.4f}"],
+        ["mean-stress servo error after the first 0.2% strain: median, max",
+         f"{100 * np.median(servo):.3f}%, {100 * servo.max():.3f}%"],
+        ["inertial number (median)", f"{np.median(h['inertial_number']):.3g}"]])
+    print()
     print("![stress-strain](figures/stress_strain.png)\n")
     volumetric = h["volumetric_strain"]
     softening = ratio[-1] < 0.95 * ratio[peak]
@@ -87,11 +100,11 @@ def fabric_section(folder):
     paper_ranked = sorted(PAPER_TABLE_2, key=lambda n: -sum(PAPER_TABLE_2[n]))
     print("Table 2: Pearson correlations of the deviatoric contact tensors with the deviatoric stress "
           "(eqs. (c1), (c2)), ranked by c1 + c2.\n")
-    print("| rank | tensor | c1 | c2 | paper rank | paper c1 | paper c2 |\n| --- | --- | --- | --- | --- | --- | --- |")
-    for k, name in enumerate(ranked, 1):
-        r = by_name[name]
-        print(f"| {k} | {PAPER_NAMES[name]} | {float(r['c1']):.3f} | {float(r['c2']):.3f} | "
-              f"{paper_ranked.index(name) + 1} | {PAPER_TABLE_2[name][0]:.3f} | {PAPER_TABLE_2[name][1]:.3f} |")
+    print_table(["rank", "tensor", "c1", "c2", "paper rank", "paper c1", "paper c2"],
+                [[str(k), PAPER_NAMES[name], f"{float(by_name[name]['c1']):.3f}",
+                  f"{float(by_name[name]['c2']):.3f}", str(paper_ranked.index(name) + 1),
+                  f"{PAPER_TABLE_2[name][0]:.3f}", f"{PAPER_TABLE_2[name][1]:.3f}"]
+                 for k, name in enumerate(ranked, 1)])
     n_points = by_name[ranked[0]]["n_points"] if ranked else "0"
     best = PAPER_NAMES[ranked[0]] if ranked else "none"
     print(f"\nReading: over {n_points} checkpoints, {best} correlates best with the stress; in the paper "
@@ -110,12 +123,10 @@ def probe_section(folder):
     strain = column(rows, "strain")
     c11, c33, kc = column(rows, "C11/K_C"), column(rows, "C33/K_C"), column(rows, "K_C")
     print("![stiffness](figures/stiffness.png)\n")
-    print("| -eps11 | K_C (MPa) | C11/K_C | C22/K_C | C33/K_C | (C11 - C33)/K_C | checks passed |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
-    for r in rows:
-        print(f"| {100 * float(r['strain']):.3g}% | {float(r['K_C']) / 1e6:.1f} | {float(r['C11/K_C']):.3f} | "
-              f"{float(r['C22/K_C']):.3f} | {float(r['C33/K_C']):.3f} | {float(r['(C11-C33)/K_C']):.3f} | "
-              f"{'yes' if r['checks_passed'] == '1' else 'no'} |")
+    print_table(["-eps11", "K_C (MPa)", "C11/K_C", "C22/K_C", "C33/K_C", "(C11 - C33)/K_C", "checks passed"],
+                [[percent(r), f"{float(r['K_C']) / 1e6:.1f}"]
+                 + [f"{float(r[name]):.3f}" for name in ("C11/K_C", "C22/K_C", "C33/K_C", "(C11-C33)/K_C")]
+                 + ["yes" if r["checks_passed"] == "1" else "no"] for r in rows])
     print(f"\nReading: from {100 * strain[0]:.3g}% to {100 * strain[-1]:.3g}% strain C11/K_C {trend(c11, 0.05)} "
           f"({c11[0]:.2f} to {c11[-1]:.2f}) and C33/K_C {trend(c33, 0.05)} ({c33[0]:.2f} to {c33[-1]:.2f}); "
           f"K_C goes from {kc[0] / 1e6:.0f} to {kc[-1] / 1e6:.0f} MPa. The paper's spheres (Fig. C123) show C11 "
@@ -133,13 +144,11 @@ def voids_section(folder):
     L13 = column(rows, "L_v_11") - column(rows, "L_v_33")
     R13 = column(rows, "R_v_11") - column(rows, "R_v_33")
     print("![voids](figures/voids.png)\n")
-    print("| -eps11 | porosity | median void size / D50 | L11 - L33 | L22 - L33 | R11 - R33 | R22 - R33 |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
-    for r in rows:
-        print(f"| {100 * float(r['strain']):.3g}% | {float(r['porosity']):.4f} | "
-              f"{float(r['void_size_median_d50']):.3f} | {float(r['L_v_11']) - float(r['L_v_33']):+.4f} | "
-              f"{float(r['L_v_22']) - float(r['L_v_33']):+.4f} | {float(r['R_v_11']) - float(r['R_v_33']):+.4f} | "
-              f"{float(r['R_v_22']) - float(r['R_v_33']):+.4f} |")
+    print_table(["-eps11", "porosity", "median void size / D50", "L11 - L33", "L22 - L33", "R11 - R33",
+                 "R22 - R33"],
+                [[percent(r), f"{float(r['porosity']):.4f}", f"{float(r['void_size_median_d50']):.3f}"]
+                 + [f"{float(r[f'{m}_v_{i}']) - float(r[f'{m}_v_33']):+.4f}" for m in "LR" for i in ("11", "22")]
+                 for r in rows])
     print(f"\nReading: L11 - L33 goes from {L13[0]:+.3f} to {L13[-1]:+.3f} and R11 - R33 from {R13[0]:+.3f} to "
           f"{R13[-1]:+.3f}: the voids grow " + ("longer along" if L13[-1] > L13[0] else "shorter along")
           + " the compression direction x1. In the paper, sphere voids grow longer along x1 "
@@ -154,12 +163,9 @@ def permeability_section(folder):
         return None
     rows.sort(key=lambda r: float(r["strain"]))
     print("![permeability](figures/permeability.png)\n")
-    print("| -eps11 | K11 (um^2) | K22 (um^2) | K33 (um^2) | (K11 - K33)/tr K | (K22 - K33)/tr K |")
-    print("| --- | --- | --- | --- | --- | --- |")
-    for r in rows:
-        print(f"| {100 * float(r['strain']):.3g}% | {float(r['K11_m2']) * 1e12:.3f} | {float(r['K22_m2']) * 1e12:.3f} | "
-              f"{float(r['K33_m2']) * 1e12:.3f} | {float(r['(K11-K33)/trK']):+.4f} | "
-              f"{float(r['(K22-K33)/trK']):+.4f} |")
+    print_table(["-eps11", "K11 (um^2)", "K22 (um^2)", "K33 (um^2)", "(K11 - K33)/tr K", "(K22 - K33)/tr K"],
+                [[percent(r)] + [f"{float(r[f'K{i}_m2']) * 1e12:.3f}" for i in ("11", "22", "33")]
+                 + [f"{float(r[name]):+.4f}" for name in ("(K11-K33)/trK", "(K22-K33)/trK")] for r in rows])
     k13 = column(rows, "(K11-K33)/trK")
     early = k13[1] if len(k13) > 1 else k13[0]
     print(f"\nReading: (K11 - K33)/tr K goes from {k13[0]:+.4f} to {k13[-1]:+.4f} ({early:+.4f} at the second "
