@@ -96,8 +96,9 @@ DemConfig read_dem_config(config::Reader& reader) {
   pr.initial_solid_fraction = reader.real(
       "dem.prepare.initial_solid_fraction", pr.initial_solid_fraction, units::none, Range::open(0.0, 0.4),
       "solid fraction of the sparse start, counted with bounding spheres (half-width radius)");
-  pr.cycles = reader.integer("dem.prepare.cycles", pr.cycles, Range::closed(1, 1000),
-                             "compaction cycles (paper: 14)");
+  pr.cycles = reader.integer(
+      "dem.prepare.cycles", pr.cycles, Range::closed(1, 1000),
+      "most compaction cycles (paper: 14); stops at the first that seizes at or below the target");
   pr.target_void_ratio = reader.real("dem.prepare.target_void_ratio", pr.target_void_ratio, units::none,
                                      Range::positive(), "keep the assembly nearest this void ratio");
   pr.confining_pressure = reader.real("dem.prepare.confining_pressure", pr.confining_pressure, units::pascal,

@@ -227,6 +227,12 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger,
       best = simulation;
       result.chosen_cycle = cycle;
     }
+    // Each cycle packs denser (agitation then compaction), so once one seizes at or below
+    // the target the later ones only move away from it: `cycles` is a maximum.
+    if (m.void_ratio <= pr.target_void_ratio) {
+      if (cycle < pr.cycles) logger->info("cycle {} reached the target: no further cycles", cycle);
+      break;
+    }
   }
   logger->info("keeping cycle {} (e = {:.4f}, target {:.4f})", result.chosen_cycle,
                result.cycle_void_ratios[static_cast<std::size_t>(result.chosen_cycle - 1)],
