@@ -23,8 +23,18 @@ done
 echo "paraview_render: h5dump -H reads all $count HDF5 files of $run"
 
 image=$(ls "$run"/image_*.xmf | tail -1)
-xvfb-run -a -s "-screen 0 1024x768x24" pvpython "$source_dir/tests/workflows/render_xdmf.py" "$image" \
-  "$work/render.png" > "$work/render.log" 2>&1 || fail "pvpython could not render $image: $(tail -5 "$work/render.log")"
+# xvfb-run can hand pvpython the display before Xvfb accepts connections (about one run in
+# three here: "bad X server connection"); only that start-up failure is tried again.
+render() {
+  xvfb-run -a -s "-screen 0 1024x768x24" pvpython "$source_dir/tests/workflows/render_xdmf.py" "$image" \
+    "$work/render.png" > "$work/render.log" 2>&1
+}
+for attempt in 1 2 3 4; do
+  render && break
+  grep -q "bad X server connection" "$work/render.log" && [ "$attempt" -lt 4 ] ||
+    fail "pvpython could not render $image: $(grep -m3 -E 'ERR|Error|error' "$work/render.log") $(tail -3 "$work/render.log")"
+  echo "paraview_render: the X server was not ready (attempt $attempt), starting it again"
+done
 grep "render_xdmf.py:" "$work/render.log"
 /usr/bin/python3 - "$work/render.png" <<'PY' || fail "the rendered PNG is blank"
 import sys
