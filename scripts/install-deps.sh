@@ -49,6 +49,23 @@ command -v dpkg-query >/dev/null || {
   exit 1
 }
 
+# A machine with no /etc/hosts (a bare debootstrap chroot; every installed Debian
+# has one) resolves "localhost" through DNS, and Open MPI asks for it at every
+# start. A resolver that drops one of glibc's two parallel queries then costs a
+# 5-s timeout per MPI program, --help included: in the fresh-machine chroot it
+# doubled the test time. Write Debian's default file when there is none; never
+# touch one that exists.
+if [ ! -e /etc/hosts ]; then
+  if [ "$(id -u)" -eq 0 ]; then
+    host=$(uname -n)
+    printf '127.0.0.1\tlocalhost\n127.0.1.1\t%s\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' "$host" >/etc/hosts
+    echo "install-deps.sh: /etc/hosts was missing; wrote Debian's default (localhost, $host)"
+  else
+    echo "install-deps.sh: warning: /etc/hosts is missing, so every MPI start waits 5 s for DNS;" >&2
+    echo "  as root: printf '127.0.0.1\\tlocalhost\\n' > /etc/hosts" >&2
+  fi
+fi
+
 missing=()
 for package in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
