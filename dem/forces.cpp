@@ -5,13 +5,9 @@
 
 namespace aniso::dem {
 
-OvoidPairGeometry ovoid_pair_geometry(const Particles& particles, std::uint32_t i, std::uint32_t j,
-                                      const Vec3& d, const Vec3& guess, const PairProperties& properties,
+OvoidPairGeometry ovoid_pair_geometry(const ConvexBody& a, const ConvexBody& b, const Vec3& d,
+                                      const Vec3& guess, const PairProperties& properties,
                                       const ContactInput& input, bool stop_if_separated, Vec3* separating) {
-  const ConvexBody a =
-      input.shapes->body(particles.radius[i], particles.aspect_ratio[i], particles.orientation[i]);
-  const ConvexBody b =
-      input.shapes->body(particles.radius[j], particles.aspect_ratio[j], particles.orientation[j]);
   OvoidPairGeometry result;
   if (separating != nullptr && !separating->isZero(0.0)) {
     // phi(n) < 0 proves the pair apart, whatever n: the answer is the one Newton would give.
@@ -51,11 +47,12 @@ void open_contact(ContactHistory& history, ContactRecord& record) {
 
 ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
                                  const ContactMaterial& material, double time_step, const ContactInput& input,
-                                 NeighborList& neighbors) {
+                                 NeighborList& neighbors, std::vector<ConvexBody>& bodies) {
   for (std::size_t k = 0; k < particles.size(); ++k) {
     particles.force[k].setZero();
     particles.torque[k].setZero();
   }
+  input.shapes->world_bodies(particles, bodies);
   const Vec3& lengths = cell.lengths();
   const auto& pairs = neighbors.pairs();
   auto& history = neighbors.history();
@@ -102,7 +99,7 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
     } else {
       const Vec3 guess = history[k].normal.isZero(0.0) ? d : history[k].normal;
       const OvoidPairGeometry geometry =
-          ovoid_pair_geometry(particles, i, j, d, guess, pair, input, true, &separating[k]);
+          ovoid_pair_geometry(bodies[i], bodies[j], d, guess, pair, input, true, &separating[k]);
       pass.newton_iterations += geometry.contact.iterations;
       pass.n_unconverged += geometry.contact.converged ? 0 : 1;
       if (!(geometry.contact.overlap > 0)) {

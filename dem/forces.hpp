@@ -28,22 +28,24 @@ struct ContactInput {
 };
 
 /// Zeroes forces and torques, then adds every contact's. `strain_rate` is the
-/// cell's diagonal rate, which adds the affine part to relative velocities.
+/// cell's diagonal rate, which adds the affine part to relative velocities. `bodies` is the
+/// caller's scratch for the particles' world-frame bodies, refilled here (kept between passes
+/// so that a step allocates nothing).
 ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
                                  const ContactMaterial& material, double time_step, const ContactInput& input,
-                                 NeighborList& neighbors);
+                                 NeighborList& neighbors, std::vector<ConvexBody>& bodies);
 
-/// Geometry of the pair (i, j) with centre separation d (minimum image), for an ovoid on either
-/// side; `guess` is the normal to start from. The Hertz radius follows `input.hertz_radius`.
-/// With `separating` (the pair's cached separating direction, zero for none), a pair that this
-/// direction still proves apart is answered at once; the cache is then updated: the new
-/// separating direction if the pair is apart, zero if it touches.
+/// Geometry of the pair of world-frame bodies a and b with centre separation d (minimum image,
+/// from a to b), for an ovoid on either side; `guess` is the normal to start from. The Hertz radius follows
+/// `input.hertz_radius`. With `separating` (the pair's cached separating direction, zero for none), a pair
+/// that this direction still proves apart is answered at once; the cache is then updated: the new separating
+/// direction if the pair is apart, zero if it touches.
 struct OvoidPairGeometry {
   ContactGeometry contact;
   double hertz_radius = 0;
 };
-OvoidPairGeometry ovoid_pair_geometry(const Particles& particles, std::uint32_t i, std::uint32_t j,
-                                      const Vec3& d, const Vec3& guess, const PairProperties& properties,
+OvoidPairGeometry ovoid_pair_geometry(const ConvexBody& a, const ConvexBody& b, const Vec3& d,
+                                      const Vec3& guess, const PairProperties& properties,
                                       const ContactInput& input, bool stop_if_separated,
                                       Vec3* separating = nullptr);
 

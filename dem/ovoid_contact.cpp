@@ -9,14 +9,13 @@ namespace aniso::dem {
 
 Support support(const ConvexBody& body, const Vec3& n) {
   Support s;
-  const Mat3 tangent = Mat3::Identity() - n * n.transpose();
   const double axial = n.dot(body.axis);
   if (axial >= body.cos_splice || axial <= -body.cos_splice) {
     // A cap: the sphere of radius R_c about the point z_c on the axis, on the side of n.
     const double height = axial >= 0 ? body.cap_centre_height : -body.cap_centre_height;
     s.point = height * body.axis + body.cap_radius * n;
     s.value = height * axial + body.cap_radius;
-    s.radii = body.cap_radius * tangent;
+    s.piece_radius = body.cap_radius;
     s.piece = axial >= 0 ? 1 : -1;
     return s;
   }
@@ -26,11 +25,21 @@ Support support(const ConvexBody& body, const Vec3& n) {
   const Vec3 in_plane = n - axial * body.axis;
   const double width = in_plane.norm(); // > sin(beta) > 0 on the band
   const Vec3 radial = in_plane / width;
-  const Vec3 hoop = body.axis.cross(radial);
   s.point = body.tube_centre_radius * radial + body.tube_radius * n;
   s.value = body.tube_centre_radius * width + body.tube_radius;
-  s.radii = body.tube_radius * tangent + (body.tube_centre_radius / width) * (hoop * hoop.transpose());
+  s.piece_radius = body.tube_radius;
+  s.hoop_radius = body.tube_centre_radius / width;
+  s.hoop = body.axis.cross(radial);
   return s;
+}
+
+Eigen::Matrix2d tangent_radii(const Support& s, const std::array<Vec3, 2>& t) {
+  Eigen::Matrix2d radii = s.piece_radius * Eigen::Matrix2d::Identity();
+  if (s.hoop_radius != 0) {
+    const Eigen::Vector2d u(t[0].dot(s.hoop), t[1].dot(s.hoop));
+    radii += s.hoop_radius * (u * u.transpose());
+  }
+  return radii;
 }
 
 double support_value(const ConvexBody& body, const Vec3& n) {
@@ -67,15 +76,8 @@ std::array<Vec3, 2> tangent_basis(const Vec3& n) {
 
 // Relative principal radii of curvature at the contact: the two surfaces' curvature tensors
 // (inverses of their radius tensors on the tangent plane) add.
-Vec3 relative_principal_radii(const Mat3& radii_a, const Mat3& radii_b, const std::array<Vec3, 2>& t) {
-  Eigen::Matrix2d curvature = Eigen::Matrix2d::Zero();
-  for (const Mat3* radii : {&radii_a, &radii_b}) {
-    Eigen::Matrix2d r;
-    for (int p = 0; p < 2; ++p)
-      for (int q = 0; q < 2; ++q)
-        r(p, q) = t[static_cast<std::size_t>(p)].dot(*radii * t[static_cast<std::size_t>(q)]);
-    curvature += r.inverse();
-  }
+Vec3 relative_principal_radii(const Support& a, const Support& b, const std::array<Vec3, 2>& t) {
+  const Eigen::Matrix2d curvature = tangent_radii(a, t).inverse() + tangent_radii(b, t).inverse();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(curvature);
   const Eigen::Vector2d k = solver.eigenvalues(); // ascending curvatures
   return {1.0 / k[1], 1.0 / k[0], 0.0};
@@ -90,33 +92,27 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
   const double scale = a.bounding_radius + b.bounding_radius;
   ContactGeometry result;
   Vec3 n = guess.normalized();
-  if (stop_if_separated) {
-    // phi(n) < 0 for any n proves the bodies apart (a separating direction).
-    const double gap_function = support_value(a, n) + support_value(b, -n) - d.dot(n);
-    if (gap_function < 0) {
-      result.overlap = gap_function;
-      result.normal = n;
-      result.converged = true;
-      return result;
-    }
-  }
   Evaluation current = evaluate(a, b, d, n);
+  // phi(n) < 0 for any n proves the bodies apart (a separating direction).
+  const auto separated = [&] {
+    result.overlap = current.gap_function;
+    result.normal = n;
+    result.converged = true;
+    return result;
+  };
+  if (stop_if_separated && current.gap_function < 0) return separated();
   std::array<Vec3, 2> t = tangent_basis(n);
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     result.iterations = iteration + 1;
     // Riemannian gradient and Hessian of phi on the unit sphere, in the tangent basis.
     const Vec3 residual = current.a.point - current.b.point - d;
     const Eigen::Vector2d gradient(t[0].dot(residual), t[1].dot(residual));
-    const Mat3 radii = current.a.radii + current.b.radii;
-    Eigen::Matrix2d hessian;
-    for (int p = 0; p < 2; ++p)
-      for (int q = 0; q < 2; ++q)
-        hessian(p, q) = t[static_cast<std::size_t>(p)].dot(radii * t[static_cast<std::size_t>(q)]);
-    hessian -= current.gap_function * Eigen::Matrix2d::Identity();
     if (gradient.norm() <= 1e-15 * scale) {
       result.converged = true;
       break;
     }
+    const Eigen::Matrix2d hessian = tangent_radii(current.a, t) + tangent_radii(current.b, t) -
+                                    current.gap_function * Eigen::Matrix2d::Identity();
     Eigen::Vector2d step;
     const Eigen::LLT<Eigen::Matrix2d> llt(hessian);
     const bool newton = llt.info() == Eigen::Success;
@@ -156,6 +152,8 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
       }
       step *= 0.5;
     }
+    // Once phi < 0 the pair is proven apart; where it lies below zero no longer matters.
+    if (stop_if_separated && current.gap_function < 0) return separated();
     if (!accepted) {
       result.converged = true;
       break;
@@ -166,7 +164,7 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
   result.overlap = current.gap_function;
   result.normal = n;
   result.point = 0.5 * (current.a.point + d + current.b.point);
-  if (with_curvature) result.principal_radii = relative_principal_radii(current.a.radii, current.b.radii, t);
+  if (with_curvature) result.principal_radii = relative_principal_radii(current.a, current.b, t);
   return result;
 }
 

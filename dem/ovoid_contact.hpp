@@ -14,6 +14,8 @@
 
 #include "common/tensor.hpp"
 
+#include <array>
+
 namespace aniso::dem {
 
 /// One particle's geometry in the world frame, centre excluded. A sphere is a cap with
@@ -28,16 +30,22 @@ struct ConvexBody {
   double bounding_radius = 0;    ///< half the mid-plane diameter, a [m]
 };
 
-/// The support point and the Hessian of h at a unit direction n.
+/// The support point at a unit direction n, and what the Hessian of h there is made of.
 struct Support {
   double value = 0;          ///< h(n) = max over the body of x.n (centre at the origin)
   Vec3 point = Vec3::Zero(); ///< the surface point with outward normal n
-  Mat3 radii = Mat3::Zero(); ///< Hessian of h at n: radius-of-curvature tensor on the tangent plane
-  int piece = 0; ///< smooth piece of the surface: +1 / -1 the cap on the +/- axis side, 0 the band
+  int piece = 0;            ///< smooth piece of the surface: +1 / -1 the cap on the +/- axis side, 0 the band
+  double piece_radius = 0;  ///< R_c on a cap, r_t on the band
+  double hoop_radius = 0;   ///< band only: rho0 / |n_plane|, the extra radius along the hoop
+  Vec3 hoop = Vec3::Zero(); ///< band only: the unit hoop direction
 };
 
 /// Support of `body` in the unit direction n.
 Support support(const ConvexBody& body, const Vec3& n);
+/// Hessian of h at the support's direction n (the radius-of-curvature tensor) in the
+/// orthonormal basis t of the plane normal to n: piece_radius I + hoop_radius (t.u)(t.u)^T.
+/// Built only where a Newton step or the Hertz radius needs it, not at every trial normal.
+Eigen::Matrix2d tangent_radii(const Support& s, const std::array<Vec3, 2>& t);
 /// h(n) alone (the cheap separation test of the force loop).
 double support_value(const ConvexBody& body, const Vec3& n);
 

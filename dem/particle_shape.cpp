@@ -56,4 +56,12 @@ ConvexBody ShapeTable::body(double radius, double aspect_ratio, const Quat& orie
   return entries_.front().unit;
 }
 
+void ShapeTable::world_bodies(const Particles& particles, std::vector<ConvexBody>& bodies) const {
+  bodies.resize(particles.size());
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    if (particles.aspect_ratio[k] == 1.0) continue;
+    bodies[k] = body(particles.radius[k], particles.aspect_ratio[k], particles.orientation[k]);
+  }
+}
+
 } // namespace aniso::dem

@@ -60,7 +60,7 @@ void Simulation::rebuild_decomposition() {
 
 void Simulation::compute_forces() {
   const ForcePass pass = compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material,
-                                                settings_.time_step, contact_input(), neighbors_);
+                                                settings_.time_step, contact_input(), neighbors_, bodies_);
   // Explosion guard: an overlap this large means the step or the loading rate is far too large.
   // Every rank must stop together, so the verdict is shared before anyone throws.
   const bool exploded = !(pass.worst_overlap <= settings_.explosion_overlap);
@@ -158,8 +158,9 @@ double Simulation::restored_hertz_radius(std::uint32_t i, std::uint32_t j,
   if (spheres || settings_.hertz_radius == HertzRadius::halfwidth) return halfwidth;
   PairProperties properties;
   properties.effective_radius = halfwidth;
-  return ovoid_pair_geometry(particles_, i, j, record.branch, record.normal, properties, contact_input(),
-                             false)
+  const ConvexBody a = shapes_.body(radius_i, particles_.aspect_ratio[i], particles_.orientation[i]);
+  const ConvexBody b = shapes_.body(radius_j, particles_.aspect_ratio[j], particles_.orientation[j]);
+  return ovoid_pair_geometry(a, b, record.branch, record.normal, properties, contact_input(), false)
       .hertz_radius;
 }
 

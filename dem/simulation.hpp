@@ -94,6 +94,7 @@ private:
 
   Particles particles_;
   ShapeTable shapes_;
+  std::vector<ConvexBody> bodies_; ///< scratch of the force pass: world-frame bodies
   PeriodicCell cell_;
   h5::CellState control_;
   SimulationSettings settings_;

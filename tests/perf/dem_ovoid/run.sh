@@ -26,6 +26,7 @@ for alpha in 1.0 0.5; do
       --set dem.prepare.initial_solid_fraction=0.35 --set dem.output_dir="$out" --log-level warn
   fi
 done
+: >"$work/results.txt" # this run's rates only
 for repeat in $(seq "$repeats"); do
   for alpha in 1.0 0.5; do
     mpiexec -n "$ranks" "$build/tests/perf/bench_dem_steps" "$work/alpha_$alpha/prepared.h5" "$steps" 1 |
