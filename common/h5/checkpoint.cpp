@@ -18,7 +18,7 @@
 namespace aniso::h5 {
 namespace {
 
-constexpr const char* schema_name = "aniso-checkpoint";
+constexpr const char* checkpoint_schema_name = "aniso-checkpoint";
 constexpr double quaternion_norm_tolerance = 1e-6;
 
 using Key = std::array<std::uint64_t, 2>;
@@ -388,7 +388,7 @@ std::vector<double> as_vector(const Vec3& vector) {
 void write_content(File& file, const Checkpoint& local, const Provenance& provenance,
                    std::uint64_t n_particles, std::uint64_t n_contacts, const RowSelection& particle_rows,
                    const RowSelection& contact_rows) {
-  file.write_attribute("schema", std::string_view(schema_name));
+  file.write_attribute("schema", std::string_view(checkpoint_schema_name));
   file.write_attribute("schema_version", checkpoint_schema_version);
   file.write_attribute("description", std::string_view("aniso DEM checkpoint: the complete state needed to "
                                                        "continue the run bit for bit. Layout and units: "
@@ -502,10 +502,11 @@ void write_content(File& file, const Checkpoint& local, const Provenance& proven
 Checkpoint read_file(const std::string& path) {
   const File file = File::open(path);
   if (!file.has_attribute("schema"))
-    file.fail("missing attribute 'schema' (expected '" + std::string(schema_name) +
+    file.fail("missing attribute 'schema' (expected '" + std::string(checkpoint_schema_name) +
               "'; not an aniso checkpoint?)");
   const std::string schema = file.read_string_attribute("schema");
-  if (schema != schema_name) file.fail("schema '" + schema + "' found, expected '" + schema_name + "'");
+  if (schema != checkpoint_schema_name)
+    file.fail("schema '" + schema + "' found, expected '" + checkpoint_schema_name + "'");
   const std::int64_t version = file.read_attribute<std::int64_t>("schema_version");
   if (version != checkpoint_schema_version)
     file.fail("schema_version " + std::to_string(version) + " found, expected " +

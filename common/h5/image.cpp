@@ -15,7 +15,7 @@
 namespace aniso::h5 {
 namespace {
 
-constexpr const char* schema_name = "aniso-voxel-image";
+constexpr const char* image_schema_name = "aniso-voxel-image";
 constexpr const char* phase_path = "/image/phase";
 // 64^3 bytes = 256 KiB chunks: large enough for fast deflate, small enough for partial reads.
 constexpr hsize_t chunk_edge = 64;
@@ -92,7 +92,7 @@ Vec3 read_origin(const Dataset& dataset) {
 
 void write_hdf5(const std::string& temp_path, const VoxelImage& image, const Provenance& provenance) {
   File file = File::create(temp_path);
-  file.write_attribute("schema", std::string_view(schema_name));
+  file.write_attribute("schema", std::string_view(image_schema_name));
   file.write_attribute("schema_version", image_schema_version);
   file.write_attribute("description",
                        std::string_view("aniso periodic voxel image (1 solid, 0 void); layout: "
@@ -180,9 +180,11 @@ void write_voxel_image(const std::string& path, const VoxelImage& image, const P
 VoxelImage read_voxel_image(const std::string& path) {
   const File file = File::open(path);
   if (!file.has_attribute("schema"))
-    file.fail(std::string("missing attribute 'schema' (expected '") + schema_name + "'): not a voxel image");
+    file.fail(std::string("missing attribute 'schema' (expected '") + image_schema_name +
+              "'): not a voxel image");
   const std::string schema = file.read_string_attribute("schema");
-  if (schema != schema_name) file.fail("schema '" + schema + "' found, expected '" + schema_name + "'");
+  if (schema != image_schema_name)
+    file.fail("schema '" + schema + "' found, expected '" + image_schema_name + "'");
   const Group group = file.open_group("image");
   const Dataset phase = group.open_dataset("phase");
   const std::int64_t version = read_int_attribute(phase, "schema_version");

@@ -9,13 +9,17 @@ source_dir=$1 build_dir=$2 work=$3
 rm -rf "$work"
 mkdir -p "$work"
 run="$work/run"
-make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$run" BIN="$build_dir"
+make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$run" BIN="$build_dir" 2>&1 |
+  tee "$work/campaign.log"
 
 fail() { echo "e2e: FAIL: $*" >&2; exit 1; }
+# Every stage's results: a stage the campaign takes for not built would be skipped silently.
 for f in prepared.h5 load_000.h5 load_001.h5 load_002.h5 history.h5 history.csv report.md figures/stress_strain.png \
-         figures/stress_strain.csv; do
+         figures/stress_strain.csv probe_load_000.h5 probe_load_002.h5 voids_load_000.h5 voids_load_002.h5 \
+         permeability_image_load_000.h5 permeability_image_load_002.h5 fabric.h5 fabric_series.h5; do
   [ -s "$run/$f" ] || fail "missing output $f"
 done
+! grep -q 'campaign: skipping' "$work/campaign.log" || fail "the campaign skipped a stage: $(grep 'skipping' "$work/campaign.log")"
 h5dump -H "$run/load_001.h5" > "$work/load_001.header" || fail "h5dump -H cannot read load_001.h5"
 grep -q 'schema_version' "$work/load_001.header" || fail "checkpoint header lacks schema_version"
 h5dump -H "$run/history.h5" > /dev/null || fail "h5dump -H cannot read history.h5"

@@ -74,6 +74,7 @@ watchdog=$!
 # The reference: the same campaign run locally, one process per stage.
 make -s -C "$workflows" campaign CONFIG="$config" OUT="$work/local" BIN="$build_dir" >"$work/local.log" 2>&1 \
   || fail "local campaign failed: $(tail -5 "$work/local.log")"
+! grep -q 'campaign: skipping' "$work/local.log" || fail "the local campaign skipped a stage: $(grep 'skipping' "$work/local.log")"
 
 started=$SECONDS
 eval "$("$cluster" start)"
