@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/shape/ovoid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -57,11 +58,13 @@ ConvexBody ShapeTable::body(double radius, double aspect_ratio, const Quat& orie
 }
 
 void ShapeTable::world_bodies(const Particles& particles, std::vector<ConvexBody>& bodies) const {
+  // Sphere-sphere pairs take the fast path; a sphere meeting an ovoid needs its body too.
+  const bool all_spheres =
+      std::all_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.aspect_ratio == 1.0; });
+  if (all_spheres) return;
   bodies.resize(particles.size());
-  for (std::size_t k = 0; k < particles.size(); ++k) {
-    if (particles.aspect_ratio[k] == 1.0) continue;
+  for (std::size_t k = 0; k < particles.size(); ++k)
     bodies[k] = body(particles.radius[k], particles.aspect_ratio[k], particles.orientation[k]);
-  }
 }
 
 } // namespace aniso::dem

@@ -30,7 +30,7 @@ public:
   [[nodiscard]] ConvexBody body(double radius, double aspect_ratio, const Quat& orientation) const;
   /// Every particle's world-frame body (ghosts included), once per force pass: a particle
   /// meets several candidate partners, and rebuilding both bodies per pair cost 8% of an
-  /// ovoid step. Spheres take the fast path and are left as they are.
+  /// ovoid step. An assembly of spheres alone needs none (the sphere fast path) and gets none.
   void world_bodies(const Particles& particles, std::vector<ConvexBody>& bodies) const;
   [[nodiscard]] double splice_angle() const { return splice_angle_; }
 
