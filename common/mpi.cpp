@@ -129,6 +129,14 @@ double Comm::max(double local) const {
   return result;
 }
 
+std::vector<double> Comm::max(std::span<const double> local) const {
+  std::vector<double> result(local.begin(), local.end());
+  check(
+      MPI_Allreduce(MPI_IN_PLACE, result.data(), static_cast<int>(result.size()), MPI_DOUBLE, MPI_MAX, raw_),
+      "MPI_Allreduce (max)");
+  return result;
+}
+
 double Comm::min(double local) const {
   double result = 0;
   check(MPI_Allreduce(&local, &result, 1, MPI_DOUBLE, MPI_MIN, raw_), "MPI_Allreduce (min)");

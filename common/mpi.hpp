@@ -55,6 +55,8 @@ public:
   [[nodiscard]] std::int64_t sum(std::int64_t local) const;
   [[nodiscard]] std::vector<std::int64_t> sum(std::span<const std::int64_t> local) const;
   [[nodiscard]] double max(double local) const;
+  /// Element-wise maximum of equally long arrays (collective).
+  [[nodiscard]] std::vector<double> max(std::span<const double> local) const;
   [[nodiscard]] double min(double local) const;
   [[nodiscard]] std::int64_t max(std::int64_t local) const;
   /// True on every rank if it is true on any rank (collective).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace aniso::dem {
 
@@ -60,8 +61,24 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
   const auto& properties = neighbors.properties();
   auto& separating = neighbors.separating_normals();
   const ContactConstants constants = contact_constants(material);
+  // Pairs proven apart since the build stay apart while the particles' motion has not used
+  // up the gap they had: those are skipped without reading the particles. A proof records
+  // the gap less the motion so far and a margin far above the round-off of both.
+  auto& clearances = neighbors.clearances();
+  const double motion = neighbors.take_gap_motion();
+  const bool proofs_hold = motion >= 0;
+  const auto prove_apart = [&](std::size_t k, double gap, double radius_sum) {
+    if (proofs_hold) clearances[k] = gap - motion - 1e-12 * radius_sum;
+  };
   ForcePass pass;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (proofs_hold && clearances[k] > motion) { // its history was cleared when proven
+      ++pass.n_skipped;
+      continue;
+    }
+    // An older proof must not outlive a contact: the pair may part again while it holds, and
+    // then its history would not be cleared. A pair found apart below proves itself anew.
+    clearances[k] = -std::numeric_limits<double>::infinity();
     const std::uint32_t i = pairs[k].i, j = pairs[k].j;
     const Vec3 d =
         PeriodicCell::minimum_image_of_wrapped(particles.position[j] - particles.position[i], lengths);
@@ -71,6 +88,7 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
     // Bounding spheres first: the radius is the half-width, the largest half-extent.
     if (distance_squared >= radius_sum * radius_sum) {
       open_contact(history[k], record);
+      prove_apart(k, std::sqrt(distance_squared) - radius_sum, radius_sum);
       continue;
     }
     PairProperties pair = properties[k];
@@ -104,6 +122,8 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
       pass.n_unconverged += geometry.contact.converged ? 0 : 1;
       if (!(geometry.contact.overlap > 0)) {
         open_contact(history[k], record);
+        // phi(n) < 0 along the returned normal: -phi bounds the distance between the bodies.
+        if (geometry.contact.overlap < 0) prove_apart(k, -geometry.contact.overlap, radius_sum);
         continue;
       }
       kinematics.normal = geometry.contact.normal;

@@ -75,12 +75,24 @@ std::array<Vec3, 2> tangent_basis(const Vec3& n) {
 }
 
 // Relative principal radii of curvature at the contact: the two surfaces' curvature tensors
-// (inverses of their radius tensors on the tangent plane) add.
+// (inverses of their radius tensors on the tangent plane) add. The eigenvalues of the 2x2
+// symmetric sum in closed form: mean +- hypot(half difference, off-diagonal); the smaller as
+// det / larger, which keeps its digits when the two differ by orders of magnitude.
 Vec3 relative_principal_radii(const Support& a, const Support& b, const std::array<Vec3, 2>& t) {
   const Eigen::Matrix2d curvature = tangent_radii(a, t).inverse() + tangent_radii(b, t).inverse();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(curvature);
-  const Eigen::Vector2d k = solver.eigenvalues(); // ascending curvatures
-  return {1.0 / k[1], 1.0 / k[0], 0.0};
+  const double mean = 0.5 * (curvature(0, 0) + curvature(1, 1));
+  const double largest = mean + std::hypot(0.5 * (curvature(0, 0) - curvature(1, 1)), curvature(0, 1));
+  const double smallest = curvature.determinant() / largest;
+  return {1.0 / largest, 1.0 / smallest, 0.0};
+}
+
+// Newton step -H^-1 g of a symmetric 2x2 H in closed form; false where H is not positive
+// definite (the test of a Cholesky factorisation: both pivots positive).
+bool newton_step(const Eigen::Matrix2d& h, const Eigen::Vector2d& g, Eigen::Vector2d& step) {
+  const double det = h(0, 0) * h(1, 1) - h(0, 1) * h(0, 1);
+  if (!(h(0, 0) > 0) || !(det > 0)) return false;
+  step = Eigen::Vector2d(h(0, 1) * g[1] - h(1, 1) * g[0], h(0, 1) * g[0] - h(0, 0) * g[1]) / det;
+  return true;
 }
 
 } // namespace
@@ -114,10 +126,8 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
     const Eigen::Matrix2d hessian = tangent_radii(current.a, t) + tangent_radii(current.b, t) -
                                     current.gap_function * Eigen::Matrix2d::Identity();
     Eigen::Vector2d step;
-    const Eigen::LLT<Eigen::Matrix2d> llt(hessian);
-    const bool newton = llt.info() == Eigen::Success;
+    const bool newton = newton_step(hessian, gradient, step);
     if (newton) {
-      step = -llt.solve(gradient);
       // A Newton step below round-off of a unit vector: n is the minimiser to machine precision.
       // (Without this test the backtracking below spends its 40 halvings failing to lower phi
       // by round-off, at every contact and every time step.)

@@ -1,8 +1,8 @@
 #pragma once
 // The shapes of an assembly's particles as the contact code needs them: one ovoid of unit
 // half-width per distinct aspect ratio (all particles share the splice angle), scaled by each
-// particle's half-width and turned by its orientation. Spheres (aspect ratio 1) take the
-// sphere fast path in the force loop and never reach this table.
+// particle's half-width and turned by its orientation. Sphere pairs take the sphere fast path
+// of the force loop; a sphere meeting an ovoid takes the convex narrow phase with its body.
 
 #include "common/tensor.hpp"
 #include "dem/ovoid_contact.hpp"

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <unordered_map>
 
@@ -89,11 +90,17 @@ void Simulation::step() {
   const double dt = settings_.time_step;
   kick(particles_, 0.5 * dt);
   drift(particles_, cell_, control_.strain_rate, dt);
-  const bool stale = neighbors_.needs_rebuild(particles_, cell_);
-  if (comm().size() > 1 ? comm().any(stale) : stale) {
+  ListMotion motion = neighbors_.motion_since_build(particles_, cell_);
+  if (comm().size() > 1) {
+    const std::array<double, 2> local{motion.separation, motion.gap};
+    const std::vector<double> global = comm().max(local);
+    motion = {global[0], global[1]};
+  }
+  if (neighbors_.needs_rebuild(motion)) {
     rebuild_decomposition();
   } else {
     halo_.update_ghosts(particles_, domain_);
+    neighbors_.set_motion(motion);
   }
   compute_forces();
   kick(particles_, 0.5 * dt);
