@@ -10,6 +10,7 @@
 #include "dem/neighbors.hpp"
 #include "dem/particle_shape.hpp"
 #include "dem/particles.hpp"
+#include "tests/dem/paper_sizes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -28,10 +29,7 @@ using aniso::RandomStream;
 using aniso::Vec3;
 using namespace aniso::dem;
 
-constexpr double kRadiusMin = 0.0375e-3;
-constexpr double kRadiusMax = 0.14e-3;
-constexpr double kDensity = 2650.0;
-constexpr double kSkin = 0.017e-3; // 0.1 D50
+using namespace aniso::dem::test;
 constexpr double kSplice = std::numbers::pi / 4;
 constexpr double kAspectRatios[] = {0.5, 0.8, 1.0, 0.5}; // dealt in turn: half alpha = 0.5
 

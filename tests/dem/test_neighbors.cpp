@@ -9,6 +9,7 @@
 #include "dem/integrator.hpp"
 #include "dem/neighbors.hpp"
 #include "dem/particles.hpp"
+#include "tests/dem/paper_sizes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,10 +27,7 @@ using aniso::RandomStream;
 using aniso::Vec3;
 using namespace aniso::dem;
 
-constexpr double kRadiusMin = 0.0375e-3;
-constexpr double kRadiusMax = 0.14e-3;
-constexpr double kDensity = 2650.0;
-constexpr double kSkin = 0.017e-3; // 0.1 D50
+using namespace aniso::dem::test;
 
 /// Twice the list's interaction range, 2 (2 r_max + skin): the shortest cell length allowed.
 double shortest_allowed_length(double skin) {
