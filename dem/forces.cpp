@@ -76,8 +76,10 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
       ++pass.n_skipped;
       continue;
     }
-    // An older proof must not outlive a contact: the pair may part again while it holds, and
-    // then its history would not be cleared. A pair found apart below proves itself anew.
+    // A pair with a proof, even one used up, was apart at its last evaluation and has nothing
+    // to forget. An older proof must not outlive a contact: the pair may part again while it
+    // holds, and then its history would not be cleared. A pair found apart proves itself anew.
+    const bool forgotten = clearances[k] != -std::numeric_limits<double>::infinity();
     clearances[k] = -std::numeric_limits<double>::infinity();
     const std::uint32_t i = pairs[k].i, j = pairs[k].j;
     const Vec3 d =
@@ -87,7 +89,7 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
     ContactRecord& record = records[k];
     // Bounding spheres first: the radius is the half-width, the largest half-extent.
     if (distance_squared >= radius_sum * radius_sum) {
-      open_contact(history[k], record);
+      if (!forgotten) open_contact(history[k], record);
       prove_apart(k, std::sqrt(distance_squared) - radius_sum, radius_sum);
       continue;
     }
@@ -121,7 +123,7 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
       pass.newton_iterations += geometry.contact.iterations;
       pass.n_unconverged += geometry.contact.converged ? 0 : 1;
       if (!(geometry.contact.overlap > 0)) {
-        open_contact(history[k], record);
+        if (!forgotten) open_contact(history[k], record);
         // phi(n) < 0 along the returned normal: -phi bounds the distance between the bodies.
         if (geometry.contact.overlap < 0) prove_apart(k, -geometry.contact.overlap, radius_sum);
         continue;
