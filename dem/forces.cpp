@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace aniso::dem {
 
@@ -61,26 +60,26 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
   const auto& properties = neighbors.properties();
   auto& separating = neighbors.separating_normals();
   const ContactConstants constants = contact_constants(material);
-  // Pairs proven apart since the build stay apart while the particles' motion has not used
-  // up the gap they had: those are skipped without reading the particles. A proof records
-  // the gap less the motion so far and a margin far above the round-off of both.
-  auto& clearances = neighbors.clearances();
-  const double motion = neighbors.take_gap_motion();
-  const bool proofs_hold = motion >= 0;
+  // Pairs proven apart stay apart while the particles' motion has not used up the gap they
+  // had: those are skipped without reading the particles. The margin of a proof is far above
+  // the round-off of the gap and of the bounds.
+  auto& proofs = neighbors.proofs();
+  const GapBounds bounds = neighbors.take_gap_bounds();
+  const bool proofs_hold = bounds.known();
   const auto prove_apart = [&](std::size_t k, double gap, double radius_sum) {
-    if (proofs_hold) clearances[k] = gap - motion - 1e-12 * radius_sum;
+    if (proofs_hold) proofs[k] = bounds.prove(gap, 1e-12 * radius_sum);
   };
   ForcePass pass;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    if (proofs_hold && clearances[k] > motion) { // its history was cleared when proven
+    if (proofs_hold && bounds.hold(proofs[k])) { // its history was cleared when proven
       ++pass.n_skipped;
       continue;
     }
     // A pair with a proof, even one used up, was apart at its last evaluation and has nothing
     // to forget. An older proof must not outlive a contact: the pair may part again while it
     // holds, and then its history would not be cleared. A pair found apart proves itself anew.
-    const bool forgotten = clearances[k] != -std::numeric_limits<double>::infinity();
-    clearances[k] = -std::numeric_limits<double>::infinity();
+    const bool forgotten = proofs[k].exists();
+    proofs[k] = ApartProof{};
     const std::uint32_t i = pairs[k].i, j = pairs[k].j;
     const Vec3 d =
         PeriodicCell::minimum_image_of_wrapped(particles.position[j] - particles.position[i], lengths);

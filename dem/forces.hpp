@@ -19,7 +19,7 @@ struct ForcePass {
   std::int64_t worst_pair = -1;       ///< index into NeighborList::pairs() of that pair
   std::int64_t newton_iterations = 0; ///< ovoid narrow phase, summed over pairs
   std::int64_t n_unconverged = 0;     ///< ovoid pairs whose Newton iteration hit its limit
-  std::int64_t n_skipped = 0;         ///< pairs skipped as proven apart (NeighborList::clearances)
+  std::int64_t n_skipped = 0;         ///< pairs skipped as proven apart (NeighborList::proofs)
 };
 
 /// What the force law needs from the geometry of one shape pair.

@@ -142,46 +142,72 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell,
     properties_[k].effective_mass =
         particles.mass[i] * particles.mass[j] / (particles.mass[i] + particles.mass[j]);
   }
-  clearances_.assign(pairs_.size(), -std::numeric_limits<double>::infinity());
+  proofs_.assign(pairs_.size(), ApartProof{});
   position_at_build_.assign(particles.position.begin(),
                             particles.position.begin() + static_cast<std::ptrdiff_t>(n_owned));
   axis_at_build_.assign(n_owned, Vec3::Zero());
   for (std::size_t i = 0; i < n_owned; ++i)
     if (particles.aspect_ratio[i] != 1.0) axis_at_build_[i] = particles.orientation[i] * Vec3::UnitZ();
-  gap_motion_ = 0; // the particles stand where the build saw them
+  position_before_ = position_at_build_;
+  axis_before_ = axis_at_build_;
+  lengths_before_ = lengths;
+  travelled_ = 0;
+  bounds_ = {0, 0}; // the particles stand where the build saw them
   lengths_at_build_ = lengths;
   ++n_builds_;
 }
 
-ListMotion NeighborList::motion_since_build(const Particles& particles, const PeriodicCell& cell) const {
+ListMotion NeighborList::motion(const Particles& particles, const PeriodicCell& cell) const {
   if (position_at_build_.size() != particles.n_owned) {
     const double infinite = std::numeric_limits<double>::infinity();
-    return {infinite, infinite};
+    return {infinite, infinite, infinite};
   }
-  const Vec3 scale = cell.lengths().cwiseQuotient(lengths_at_build_);
-  double max_shift_squared = 0, max_turn_squared = 0;
+  const Vec3& lengths = cell.lengths();
+  const Vec3 scale = lengths.cwiseQuotient(lengths_at_build_);
+  const Vec3 step_scale = lengths.cwiseQuotient(lengths_before_);
+  double shift_squared = 0, turn_squared = 0, step_shift_squared = 0, step_turn_squared = 0;
   for (std::size_t i = 0; i < particles.n_owned; ++i) {
-    const Vec3 affine = position_at_build_[i].cwiseProduct(scale);
-    max_shift_squared =
-        std::max(max_shift_squared, separation(affine, particles.position[i], cell.lengths()).squaredNorm());
+    const Vec3& x = particles.position[i];
+    shift_squared = std::max(shift_squared,
+                             separation(position_at_build_[i].cwiseProduct(scale), x, lengths).squaredNorm());
+    step_shift_squared =
+        std::max(step_shift_squared,
+                 separation(position_before_[i].cwiseProduct(step_scale), x, lengths).squaredNorm());
     if (particles.aspect_ratio[i] != 1.0) {
       // A body of revolution turned from axis u0 to u is the old body turned by the smallest
       // rotation between them: no point within radius a of the centre moves more than a |u - u0|.
       const Vec3 axis = particles.orientation[i] * Vec3::UnitZ();
-      const double radius = particles.radius[i];
-      max_turn_squared =
-          std::max(max_turn_squared, radius * radius * (axis - axis_at_build_[i]).squaredNorm());
+      const double radius_squared = particles.radius[i] * particles.radius[i];
+      turn_squared = std::max(turn_squared, radius_squared * (axis - axis_at_build_[i]).squaredNorm());
+      step_turn_squared =
+          std::max(step_turn_squared, radius_squared * (axis - axis_before_[i]).squaredNorm());
     }
   }
   // A pair's separation changes by at most twice the largest non-affine shift plus the cell
   // strain times its length (at most the interaction range); its gap along a fixed direction
-  // by that plus the surface motion of both bodies' turns. These bound the change from the
-  // build, so between two instants t1 < t2 the change is at most the sum of both bounds.
+  // by that plus the surface motion of both bodies' turns.
+  const double range = 4 * max_radius_ + skin_;
   const double strain = (scale - Vec3::Ones()).cwiseAbs().maxCoeff();
-  ListMotion motion;
-  motion.separation = 2 * std::sqrt(max_shift_squared) + strain * (4 * max_radius_ + skin_);
-  motion.gap = motion.separation + 2 * std::sqrt(max_turn_squared);
-  return motion;
+  const double step_strain = (step_scale - Vec3::Ones()).cwiseAbs().maxCoeff();
+  ListMotion result;
+  result.separation = 2 * std::sqrt(shift_squared) + strain * range;
+  result.gap = result.separation + 2 * std::sqrt(turn_squared);
+  result.step_gap =
+      2 * std::sqrt(step_shift_squared) + step_strain * range + 2 * std::sqrt(step_turn_squared);
+  return result;
+}
+
+ListMotion NeighborList::measure_motion(const Particles& particles, const PeriodicCell& cell) {
+  const ListMotion result = motion(particles, cell);
+  if (position_before_.size() == particles.n_owned) {
+    std::copy(particles.position.begin(),
+              particles.position.begin() + static_cast<std::ptrdiff_t>(particles.n_owned),
+              position_before_.begin());
+    for (std::size_t i = 0; i < particles.n_owned; ++i)
+      if (particles.aspect_ratio[i] != 1.0) axis_before_[i] = particles.orientation[i] * Vec3::UnitZ();
+    lengths_before_ = cell.lengths();
+  }
+  return result;
 }
 
 std::int64_t NeighborList::find(const Particles& particles, std::uint32_t i, std::uint32_t j) const {

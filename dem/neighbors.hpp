@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -38,15 +39,40 @@ struct HistoryRecord {
   ContactHistory history;
 };
 
-/// How far the pairs of a list may have moved since it was built, from each particle's shift
-/// (beyond the cell's affine strain) and, for ovoids, the turn of its axis.
+/// How far the pairs of a list may have moved, from each particle's shift (beyond the cell's
+/// affine strain) and, for ovoids, the turn of its axis. With several ranks the bounds of all
+/// ranks combine by their maximum (ghosts are other ranks' owned particles).
 struct ListMotion {
-  /// Bound on the change of any pair's centre separation [m]: the rebuild test.
+  /// Since the build: bound on the change of any pair's centre separation [m], the rebuild test.
   double separation = 0;
-  /// Bound on the change of any pair's gap along a fixed direction (the separation plus each
-  /// ovoid's support change, radius times the chord of its axis turn) [m]: what a proof that
-  /// a pair is apart must exceed to stay valid.
+  /// Since the build: bound on the change of any pair's gap along a fixed direction (the
+  /// separation plus each ovoid's support change, radius times the chord of its axis turn) [m].
   double gap = 0;
+  /// The same gap bound over the last step alone (since the previous measure_motion) [m].
+  double step_gap = 0;
+};
+
+/// A proof that a pair is apart: the gap it had (a lower bound of its surfaces' distance) less
+/// the motion bounds at that time and a round-off margin [m]. Between instants t1 < t2 a gap
+/// falls by at most B(t1) + B(t2), B the bound since the build, and by at most T(t2) - T(t1), T
+/// the sum of the step bounds; the proof holds while either is short of the gap.
+struct ApartProof {
+  double after_build = -std::numeric_limits<double>::infinity();  ///< gap - B(t1): holds while > B(t)
+  double after_travel = -std::numeric_limits<double>::infinity(); ///< gap + T(t1): holds while > T(t)
+  [[nodiscard]] bool exists() const { return after_build != -std::numeric_limits<double>::infinity(); }
+};
+
+/// The motion bounds of one force pass, B and T above (negative: none declared, no proof holds).
+struct GapBounds {
+  double from_build = -1;
+  double travelled = -1;
+  [[nodiscard]] bool known() const { return from_build >= 0; }
+  [[nodiscard]] bool hold(const ApartProof& proof) const {
+    return proof.after_build > from_build || proof.after_travel > travelled;
+  }
+  [[nodiscard]] ApartProof prove(double gap, double margin) const {
+    return {gap - from_build - margin, gap + travelled - margin};
+  }
 };
 
 class NeighborList {
@@ -59,20 +85,23 @@ public:
   /// previous list (matched by ids) or from `carried` (histories that came with migrating particles).
   void build(const Particles& particles, const PeriodicCell& cell,
              const std::vector<HistoryRecord>& carried = {});
-  /// How far this rank's owned particles have moved since the build. With several ranks the
-  /// bounds of all ranks combine by their maximum (ghosts are other ranks' owned particles).
-  [[nodiscard]] ListMotion motion_since_build(const Particles& particles, const PeriodicCell& cell) const;
+  /// How far this rank's owned particles have moved since the build and since the previous
+  /// call (which it advances to now): call it once per step.
+  [[nodiscard]] ListMotion measure_motion(const Particles& particles, const PeriodicCell& cell);
   /// True when the particles may have moved far enough to miss a pair (motion of all ranks).
   [[nodiscard]] bool needs_rebuild(const ListMotion& motion) const { return motion.separation > skin_; }
   /// True when owned particles may have moved far enough (fluctuation plus cell strain) to miss a pair.
   [[nodiscard]] bool needs_rebuild(const Particles& particles, const PeriodicCell& cell) const {
-    return needs_rebuild(motion_since_build(particles, cell));
+    return needs_rebuild(motion(particles, cell));
   }
-  /// Declares the motion of all ranks since the build for the next force pass, which may then
-  /// skip the pairs proven apart since (see clearances()). Without it the pass skips none.
-  void set_motion(const ListMotion& motion) { gap_motion_ = motion.gap; }
-  /// The gap motion declared for this force pass and forgets it (negative: none declared).
-  double take_gap_motion() { return std::exchange(gap_motion_, -1.0); }
+  /// Declares the motion of all ranks for the next force pass, which may then skip the pairs
+  /// proven apart (see proofs()). Without it the pass skips none.
+  void set_motion(const ListMotion& motion) {
+    travelled_ += motion.step_gap;
+    bounds_ = {motion.gap, travelled_};
+  }
+  /// The bounds declared for this force pass, and forgets them.
+  GapBounds take_gap_bounds() { return std::exchange(bounds_, GapBounds{}); }
   /// The largest radius of all particles on all ranks, so that every rank takes the same decisions.
   void set_max_radius(double radius) { global_max_radius_ = radius; }
 
@@ -87,11 +116,10 @@ public:
   /// narrow phase's early exit only: no result depends on it, so it is not part of the state that
   /// checkpoints and migrating particles carry.
   [[nodiscard]] std::vector<Vec3>& separating_normals() { return separating_normals_; }
-  /// Per pair, a proof that it is apart: the gap it had, less the gap motion at that time
-  /// and a round-off margin [m]. While it exceeds the gap motion declared since, the pair is
-  /// still apart and its narrow phase can be skipped: a pure saving, the forces do not change.
-  /// -infinity: no proof. Like separating_normals(), a cache that no result depends on.
-  [[nodiscard]] std::vector<double>& clearances() { return clearances_; }
+  /// Per pair, a proof that it is apart (none: ApartProof{}). While it holds the pair's narrow
+  /// phase can be skipped: a pure saving, the forces do not change. Like separating_normals(),
+  /// a cache that no result depends on.
+  [[nodiscard]] std::vector<ApartProof>& proofs() { return proofs_; }
   [[nodiscard]] double skin() const { return skin_; }
   [[nodiscard]] std::int64_t n_builds() const { return n_builds_; }
 
@@ -105,13 +133,18 @@ private:
   std::vector<ContactRecord> records_;
   std::vector<PairProperties> properties_;
   std::vector<Vec3> separating_normals_;
-  std::vector<double> clearances_;
+  std::vector<ApartProof> proofs_;
   std::vector<std::array<std::uint64_t, 2>>
       pair_ids_; ///< ids of pairs_, for carrying history across migration
   double global_max_radius_ = 0;
+  [[nodiscard]] ListMotion motion(const Particles& particles, const PeriodicCell& cell) const;
   std::vector<Vec3> position_at_build_;
-  std::vector<Vec3> axis_at_build_; ///< owned ovoids' axes (zero for spheres, whose turn is irrelevant)
-  double gap_motion_ = -1;          ///< declared for the next force pass; negative: none
+  std::vector<Vec3> axis_at_build_;   ///< owned ovoids' axes (zero for spheres, whose turn is irrelevant)
+  std::vector<Vec3> position_before_; ///< at the previous measure_motion, and the axes and lengths
+  std::vector<Vec3> axis_before_;
+  Vec3 lengths_before_ = Vec3::Ones();
+  double travelled_ = 0; ///< T: the step bounds summed since the build
+  GapBounds bounds_;     ///< declared for the next force pass
   Vec3 lengths_at_build_ = Vec3::Ones();
   double max_radius_ = 0;
   std::int64_t n_builds_ = 0;

@@ -90,11 +90,11 @@ void Simulation::step() {
   const double dt = settings_.time_step;
   kick(particles_, 0.5 * dt);
   drift(particles_, cell_, control_.strain_rate, dt);
-  ListMotion motion = neighbors_.motion_since_build(particles_, cell_);
+  ListMotion motion = neighbors_.measure_motion(particles_, cell_);
   if (comm().size() > 1) {
-    const std::array<double, 2> local{motion.separation, motion.gap};
+    const std::array<double, 3> local{motion.separation, motion.gap, motion.step_gap};
     const std::vector<double> global = comm().max(local);
-    motion = {global[0], global[1]};
+    motion = {global[0], global[1], global[2]};
   }
   if (neighbors_.needs_rebuild(motion)) {
     rebuild_decomposition();
