@@ -23,6 +23,14 @@ Environment::Environment(int& argc, char**& argv) {
     // /etc/hosts) that waits about 5 s for DNS. aniso never spawns processes, so the isolated
     // singleton does. The user's own setting wins; under mpiexec the key has no effect.
     setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+    // Isolated singletons all take job family 0 and so share one session directory, which the
+    // first to finish removes; OMPIO's "sm" shared-file-pointer component creates a file there
+    // at every MPI_File_open, and a concurrent singleton's HDF5 write then failed ("unable to
+    // open file for mmap", seen once under ctest -j2; Open MPI issue 10971 is the same warning).
+    // aniso never uses shared file pointers; without "sm" OMPIO takes "lockedfile", whose lock
+    // sits next to the file being written and is removed when it is closed. Under mpiexec the
+    // session directory is the job's own, and the choice makes no difference.
+    setenv("OMPI_MCA_sharedfp", "^sm", 0);
     check(MPI_Init(&argc, &argv), "MPI_Init");
   }
   // Errors come back as codes so that we can throw with a message instead of aborting silently.
