@@ -18,7 +18,7 @@ void kick(Particles& particles, double dt) {
     if (particles.aspect_ratio[k] == 1.0) {
       particles.angular_velocity[k] += particles.torque[k].cwiseQuotient(particles.inertia[k]) * dt;
     } else {
-      const Vec3 axis = particles.orientation[k] * Vec3::UnitZ();
+      const Vec3 axis = particle_axis(particles.orientation[k]);
       particles.angular_velocity[k] +=
           dt * inverse_inertia_times(particles.inertia[k], axis, particles.torque[k]);
     }

@@ -78,7 +78,7 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
   std::array<ExactSum, 7> axes;
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     if (particles.aspect_ratio[k] == 1.0) continue;
-    const Vec3 e = particles.orientation[k] * Vec3::UnitZ();
+    const Vec3 e = particle_axis(particles.orientation[k]);
     const std::array<double, 6> components{e.x() * e.x(), e.y() * e.y(), e.z() * e.z(),
                                            e.y() * e.z(), e.x() * e.z(), e.x() * e.y()};
     for (std::size_t c = 0; c < components.size(); ++c)

@@ -1,6 +1,7 @@
 #include "dem/neighbors.hpp"
 
 #include "common/error.hpp"
+#include "dem/rotation.hpp"
 
 #include <fmt/format.h>
 
@@ -147,7 +148,7 @@ void NeighborList::build(const Particles& particles, const PeriodicCell& cell,
                             particles.position.begin() + static_cast<std::ptrdiff_t>(n_owned));
   axis_at_build_.assign(n_owned, Vec3::Zero());
   for (std::size_t i = 0; i < n_owned; ++i)
-    if (particles.aspect_ratio[i] != 1.0) axis_at_build_[i] = particles.orientation[i] * Vec3::UnitZ();
+    if (particles.aspect_ratio[i] != 1.0) axis_at_build_[i] = particle_axis(particles.orientation[i]);
   position_before_ = position_at_build_;
   axis_before_ = axis_at_build_;
   lengths_before_ = lengths;
@@ -176,7 +177,7 @@ ListMotion NeighborList::motion(const Particles& particles, const PeriodicCell& 
     if (particles.aspect_ratio[i] != 1.0) {
       // A body of revolution turned from axis u0 to u is the old body turned by the smallest
       // rotation between them: no point within radius a of the centre moves more than a |u - u0|.
-      const Vec3 axis = particles.orientation[i] * Vec3::UnitZ();
+      const Vec3 axis = particle_axis(particles.orientation[i]);
       const double radius_squared = particles.radius[i] * particles.radius[i];
       turn_squared = std::max(turn_squared, radius_squared * (axis - axis_at_build_[i]).squaredNorm());
       step_turn_squared =
@@ -204,7 +205,7 @@ ListMotion NeighborList::measure_motion(const Particles& particles, const Period
               particles.position.begin() + static_cast<std::ptrdiff_t>(particles.n_owned),
               position_before_.begin());
     for (std::size_t i = 0; i < particles.n_owned; ++i)
-      if (particles.aspect_ratio[i] != 1.0) axis_before_[i] = particles.orientation[i] * Vec3::UnitZ();
+      if (particles.aspect_ratio[i] != 1.0) axis_before_[i] = particle_axis(particles.orientation[i]);
     lengths_before_ = cell.lengths();
   }
   return result;

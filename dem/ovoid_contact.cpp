@@ -7,7 +7,10 @@
 
 namespace aniso::dem {
 
-Support support(const ConvexBody& body, const Vec3& n) {
+namespace {
+
+// The support of one body, inlined into the narrow phase: it runs twice per Newton iteration.
+[[gnu::always_inline]] inline Support support_of(const ConvexBody& body, const Vec3& n) {
   Support s;
   const double axial = n.dot(body.axis);
   if (axial >= body.cos_splice || axial <= -body.cos_splice) {
@@ -24,22 +27,24 @@ Support support(const ConvexBody& body, const Vec3& n) {
   // acts along the hoop direction u only.
   const Vec3 in_plane = n - axial * body.axis;
   const double width = in_plane.norm(); // > sin(beta) > 0 on the band
-  const Vec3 radial = in_plane / width;
+  const double inverse_width = 1.0 / width;
+  const Vec3 radial = in_plane * inverse_width;
   s.point = body.tube_centre_radius * radial + body.tube_radius * n;
   s.value = body.tube_centre_radius * width + body.tube_radius;
   s.piece_radius = body.tube_radius;
-  s.hoop_radius = body.tube_centre_radius / width;
+  s.hoop_radius = body.tube_centre_radius * inverse_width;
   s.hoop = body.axis.cross(radial);
   return s;
 }
 
-Eigen::Matrix2d tangent_radii(const Support& s, const std::array<Vec3, 2>& t) {
-  Eigen::Matrix2d radii = s.piece_radius * Eigen::Matrix2d::Identity();
-  if (s.hoop_radius != 0) {
-    const Eigen::Vector2d u(t[0].dot(s.hoop), t[1].dot(s.hoop));
-    radii += s.hoop_radius * (u * u.transpose());
-  }
-  return radii;
+} // namespace
+
+Support support(const ConvexBody& body, const Vec3& n) {
+  return support_of(body, n);
+}
+
+Vec3 radius_tensor_times(const Support& s, const Vec3& v) {
+  return s.piece_radius * v + (s.hoop_radius * s.hoop.dot(v)) * s.hoop;
 }
 
 double support_value(const ConvexBody& body, const Vec3& n) {
@@ -58,41 +63,60 @@ struct Evaluation {
   Support b; ///< support of B at -n
 };
 
-Evaluation evaluate(const ConvexBody& a, const ConvexBody& b, const Vec3& d, const Vec3& n) {
+[[gnu::always_inline]] inline Evaluation evaluate(const ConvexBody& a, const ConvexBody& b, const Vec3& d,
+                                                  const Vec3& n) {
   Evaluation e;
-  e.a = support(a, n);
-  e.b = support(b, -n);
+  e.a = support_of(a, n);
+  e.b = support_of(b, -n);
   e.gap_function = e.a.value + e.b.value - d.dot(n);
   return e;
 }
 
-// An orthonormal pair spanning the plane normal to the unit vector n.
-std::array<Vec3, 2> tangent_basis(const Vec3& n) {
-  const Vec3 helper =
-      std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
-  const Vec3 t1 = n.cross(helper).normalized();
-  return {t1, n.cross(t1)};
+// The two surfaces' radius tensors on the tangent plane at n are r_A I + alpha u u^T and
+// r_B I + beta v v^T (u, v the hoop directions, tangent to the sphere at n; alpha = 0 on a cap,
+// whose hoop is zero). Sums and inverses of such tensors need no basis of the plane: only the
+// scalars below and gamma = u.v.
+struct PlaneTensors {
+  double alpha = 0, beta = 0, gamma = 0;
+};
+
+PlaneTensors plane_tensors(const Support& a, const Support& b) {
+  return {a.hoop_radius, b.hoop_radius, a.hoop.dot(b.hoop)};
 }
 
-// Relative principal radii of curvature at the contact: the two surfaces' curvature tensors
-// (inverses of their radius tensors on the tangent plane) add. The eigenvalues of the 2x2
-// symmetric sum in closed form: mean +- hypot(half difference, off-diagonal); the smaller as
-// det / larger, which keeps its digits when the two differ by orders of magnitude.
-Vec3 relative_principal_radii(const Support& a, const Support& b, const std::array<Vec3, 2>& t) {
-  const Eigen::Matrix2d curvature = tangent_radii(a, t).inverse() + tangent_radii(b, t).inverse();
-  const double mean = 0.5 * (curvature(0, 0) + curvature(1, 1));
-  const double largest = mean + std::hypot(0.5 * (curvature(0, 0) - curvature(1, 1)), curvature(0, 1));
-  const double smallest = curvature.determinant() / largest;
-  return {1.0 / largest, 1.0 / smallest, 0.0};
-}
-
-// Newton step -H^-1 g of a symmetric 2x2 H in closed form; false where H is not positive
-// definite (the test of a Cholesky factorisation: both pivots positive).
-bool newton_step(const Eigen::Matrix2d& h, const Eigen::Vector2d& g, Eigen::Vector2d& step) {
-  const double det = h(0, 0) * h(1, 1) - h(0, 1) * h(0, 1);
-  if (!(h(0, 0) > 0) || !(det > 0)) return false;
-  step = Eigen::Vector2d(h(0, 1) * g[1] - h(1, 1) * g[0], h(0, 1) * g[0] - h(0, 0) * g[1]) / det;
+// Newton step x = -H^-1 g on the tangent plane for the Riemannian Hessian
+// H = c I + alpha u u^T + beta v v^T, c = r_A + r_B - phi, by Woodbury's identity:
+// (c I + U D U^T)^-1 g = (g - U y) / c with (c I + D U^T U) y = D U^T g, U = [u v],
+// D = diag(alpha, beta). alpha, beta >= 0, so H is positive definite whenever c > 0; false
+// otherwise (overlaps beyond the smallest radii of curvature: steepest descent instead).
+bool newton_step(const Support& a, const Support& b, double gap_function, const Vec3& gradient, Vec3& step) {
+  const double c = a.piece_radius + b.piece_radius - gap_function;
+  if (!(c > 0)) return false;
+  const PlaneTensors p = plane_tensors(a, b);
+  const double k00 = c + p.alpha, k01 = p.alpha * p.gamma, k10 = p.beta * p.gamma, k11 = c + p.beta;
+  const double r0 = p.alpha * a.hoop.dot(gradient), r1 = p.beta * b.hoop.dot(gradient);
+  const double determinant = k00 * k11 - k01 * k10;
+  const double scale = 1.0 / (c * determinant); // one division for both 1/(c det) and 1/c
+  const double y0 = (r0 * k11 - k01 * r1) * scale, y1 = (k00 * r1 - k10 * r0) * scale;
+  step = y0 * a.hoop + y1 * b.hoop - gradient * (determinant * scale);
   return true;
+}
+
+// Relative principal radii of curvature at the contact: the two surfaces' curvature tensors,
+// inverses of their radius tensors, add. With (r I + alpha u u^T)^-1 = (I - alpha/(r + alpha)
+// u u^T)/r the sum is k I - p u u^T - q v v^T; the eigenvalues of p u u^T + q v v^T have sum
+// p + q and product p q (1 - gamma^2). The smaller curvature as det / larger keeps its digits
+// when the two differ by orders of magnitude.
+Vec3 relative_principal_radii(const Support& a, const Support& b) {
+  const PlaneTensors t = plane_tensors(a, b);
+  const double k = 1.0 / a.piece_radius + 1.0 / b.piece_radius;
+  const double p = t.alpha / (a.piece_radius * (a.piece_radius + t.alpha));
+  const double q = t.beta / (b.piece_radius * (b.piece_radius + t.beta));
+  const double sum = p + q, product = p * q * std::max(0.0, 1.0 - t.gamma * t.gamma);
+  const double half_spread = std::sqrt(std::max(0.0, 0.25 * sum * sum - product));
+  const double largest = k - (0.5 * sum - half_spread);
+  const double determinant = k * k - k * sum + product;
+  return {1.0 / largest, largest / determinant, 0.0};
 }
 
 } // namespace
@@ -103,7 +127,9 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
   constexpr int max_halvings = 40;
   const double scale = a.bounding_radius + b.bounding_radius;
   ContactGeometry result;
-  Vec3 n = guess.normalized();
+  // The previous normal of a touching pair is unit to round-off already.
+  const double guess_length_squared = guess.squaredNorm();
+  Vec3 n = std::abs(guess_length_squared - 1.0) <= 1e-15 ? guess : guess / std::sqrt(guess_length_squared);
   Evaluation current = evaluate(a, b, d, n);
   // phi(n) < 0 for any n proves the bodies apart (a separating direction).
   const auto separated = [&] {
@@ -113,25 +139,22 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
     return result;
   };
   if (stop_if_separated && current.gap_function < 0) return separated();
-  std::array<Vec3, 2> t = tangent_basis(n);
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     result.iterations = iteration + 1;
-    // Riemannian gradient and Hessian of phi on the unit sphere, in the tangent basis.
+    // Riemannian gradient of phi on the unit sphere: the residual's part normal to n.
     const Vec3 residual = current.a.point - current.b.point - d;
-    const Eigen::Vector2d gradient(t[0].dot(residual), t[1].dot(residual));
-    if (gradient.norm() <= 1e-15 * scale) {
+    const Vec3 gradient = residual - residual.dot(n) * n;
+    if (gradient.squaredNorm() <= 1e-30 * scale * scale) {
       result.converged = true;
       break;
     }
-    const Eigen::Matrix2d hessian = tangent_radii(current.a, t) + tangent_radii(current.b, t) -
-                                    current.gap_function * Eigen::Matrix2d::Identity();
-    Eigen::Vector2d step;
-    const bool newton = newton_step(hessian, gradient, step);
+    Vec3 step;
+    const bool newton = newton_step(current.a, current.b, current.gap_function, gradient, step);
     if (newton) {
       // A Newton step below round-off of a unit vector: n is the minimiser to machine precision.
       // (Without this test the backtracking below spends its 40 halvings failing to lower phi
       // by round-off, at every contact and every time step.)
-      if (step.norm() <= 1e-15) {
+      if (step.squaredNorm() <= 1e-30) {
         result.converged = true;
         break;
       }
@@ -142,10 +165,10 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
     // further means phi is flat to round-off, i.e. converged.
     bool accepted = false;
     for (int halving = 0; halving < max_halvings; ++halving) {
-      const Vec3 trial_normal = (n + step[0] * t[0] + step[1] * t[1]).normalized();
+      const Vec3 trial_normal = (n + step).normalized();
       const Evaluation trial = evaluate(a, b, d, trial_normal);
       if (trial.gap_function <= current.gap_function) {
-        const double moved = (trial_normal - n).norm();
+        const double moved_squared = (trial_normal - n).squaredNorm();
         n = trial_normal;
         accepted = true;
         // A short full Newton step ends it. Within one smooth piece of each surface Newton
@@ -155,8 +178,9 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
         // are far below the 1e-6 rad the contact law needs, and with the warm start from the
         // last normal most contacts take a single iteration per time step.
         const bool same_pieces = trial.a.piece == current.a.piece && trial.b.piece == current.b.piece;
-        const double short_step = same_pieces ? 1e-5 : 1e-8;
-        if (moved <= 1e-15 || (newton && halving == 0 && moved <= short_step)) result.converged = true;
+        const double short_step_squared = same_pieces ? 1e-10 : 1e-16;
+        if (moved_squared <= 1e-30 || (newton && halving == 0 && moved_squared <= short_step_squared))
+          result.converged = true;
         current = trial;
         break;
       }
@@ -168,13 +192,12 @@ ContactGeometry convex_contact(const ConvexBody& a, const ConvexBody& b, const V
       result.converged = true;
       break;
     }
-    t = tangent_basis(n);
     if (result.converged) break;
   }
   result.overlap = current.gap_function;
   result.normal = n;
   result.point = 0.5 * (current.a.point + d + current.b.point);
-  if (with_curvature) result.principal_radii = relative_principal_radii(current.a, current.b, t);
+  if (with_curvature) result.principal_radii = relative_principal_radii(current.a, current.b);
   return result;
 }
 

@@ -42,10 +42,9 @@ struct Support {
 
 /// Support of `body` in the unit direction n.
 Support support(const ConvexBody& body, const Vec3& n);
-/// Hessian of h at the support's direction n (the radius-of-curvature tensor) in the
-/// orthonormal basis t of the plane normal to n: piece_radius I + hoop_radius (t.u)(t.u)^T.
-/// Built only where a Newton step or the Hertz radius needs it, not at every trial normal.
-Eigen::Matrix2d tangent_radii(const Support& s, const std::array<Vec3, 2>& t);
+/// Hessian of h at the support's direction n (the radius-of-curvature tensor, on the plane
+/// normal to n) times a vector v of that plane: piece_radius v + hoop_radius (u.v) u.
+Vec3 radius_tensor_times(const Support& s, const Vec3& v);
 /// h(n) alone (the cheap separation test of the force loop).
 double support_value(const ConvexBody& body, const Vec3& n);
 

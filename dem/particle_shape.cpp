@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/shape/ovoid.hpp"
+#include "dem/rotation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +46,7 @@ ConvexBody ShapeTable::body(double radius, double aspect_ratio, const Quat& orie
   for (const Entry& entry : entries_) {
     if (entry.aspect_ratio != aspect_ratio) continue;
     ConvexBody b = entry.unit;
-    b.axis = orientation * Vec3::UnitZ();
+    b.axis = particle_axis(orientation);
     b.cap_radius *= radius;
     b.cap_centre_height *= radius;
     b.tube_radius *= radius;

@@ -9,14 +9,25 @@
 
 namespace aniso::dem {
 
+/// The particle's axis of revolution in the world frame, q z for a unit quaternion q: the third
+/// column of its rotation matrix (a third of the arithmetic of rotating a general vector).
+inline Vec3 particle_axis(const Quat& q) {
+  return {2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
+          1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y())};
+}
+
 /// I_world^-1 v for body-frame principal moments `inertia` (x == y) and world axis `axis`.
-Vec3 inverse_inertia_times(const Vec3& inertia, const Vec3& axis, const Vec3& v);
+inline Vec3 inverse_inertia_times(const Vec3& inertia, const Vec3& axis, const Vec3& v) {
+  return v / inertia.x() + (1.0 / inertia.z() - 1.0 / inertia.x()) * v.dot(axis) * axis;
+}
 /// I_world v.
-Vec3 inertia_times(const Vec3& inertia, const Vec3& axis, const Vec3& v);
+inline Vec3 inertia_times(const Vec3& inertia, const Vec3& axis, const Vec3& v) {
+  return inertia.x() * v + (inertia.z() - inertia.x()) * v.dot(axis) * axis;
+}
 
 /// Rotational kinetic energy omega . I_world omega / 2.
 inline double rotational_energy(const Vec3& inertia, const Quat& orientation, const Vec3& angular_velocity) {
-  return 0.5 * angular_velocity.dot(inertia_times(inertia, orientation * Vec3::UnitZ(), angular_velocity));
+  return 0.5 * angular_velocity.dot(inertia_times(inertia, particle_axis(orientation), angular_velocity));
 }
 
 /// Advances orientation and world angular velocity by dt of torque-free motion, exactly:

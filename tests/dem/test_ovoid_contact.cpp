@@ -237,6 +237,82 @@ TEST(OvoidContact, RelativePrincipalRadiiAtTheEquator) {
   EXPECT_NEAR(s.principal_radii[1], 2.0 / 3.0, 1e-12);
 }
 
+// The Hessian of the support function (the radius-of-curvature tensor) that Newton's step and
+// the Hertz radius use is the derivative of the support point: a central difference of the
+// point along a tangent direction, away from the splice circles where it jumps.
+TEST(OvoidSupport, RadiusTensorIsTheDerivativeOfTheSupportPoint) {
+  ShapeTable table(beta);
+  for (double alpha : {1.0, 0.8, 0.5})
+    table.add(alpha);
+  RandomStream stream(7, 3);
+  const double step = 1e-6;
+  int n_checked = 0, n_band = 0;
+  double worst = 0;
+  for (int sample = 0; sample < 3000; ++sample) {
+    const double alpha = std::array<double, 3>{1.0, 0.8, 0.5}[static_cast<std::size_t>(sample % 3)];
+    const ConvexBody body = table.body(stream.uniform(0.5, 1.0), alpha, random_rotation(stream));
+    const Vec3 n = direction(std::acos(stream.uniform(-1.0, 1.0)), stream.uniform(0.0, 2.0 * pi));
+    if (std::abs(std::abs(n.dot(body.axis)) - body.cos_splice) < 1e-3) continue;
+    const Vec3 helper =
+        n.cross(direction(std::acos(stream.uniform(-1.0, 1.0)), stream.uniform(0.0, 2.0 * pi)));
+    const Vec3 v = helper.normalized();
+    const aniso::dem::Support s = aniso::dem::support(body, n);
+    const Vec3 difference = (aniso::dem::support(body, (n + step * v).normalized()).point -
+                             aniso::dem::support(body, (n - step * v).normalized()).point) /
+                            (2.0 * step);
+    const Vec3 tensor_times = aniso::dem::radius_tensor_times(s, v);
+    worst = std::max(worst, (difference - tensor_times).norm() / body.bounding_radius);
+    ++n_checked;
+    n_band += s.piece == 0 ? 1 : 0;
+  }
+  std::printf("[ measured ] %d directions (%d on the band): worst |dp/dn v - R v| %.3g a\n", n_checked,
+              n_band, worst);
+  EXPECT_GT(n_band, 500);
+  EXPECT_LT(worst, 1e-8);
+}
+
+// The relative principal radii, computed without a basis of the tangent plane (Woodbury-type
+// closed forms of the two radius tensors), against the explicit 2x2 matrices in an orthonormal
+// basis, inverted, summed and diagonalised by Eigen, at the contact of random pairs.
+TEST(OvoidContact, RelativePrincipalRadiiAgreeWithAnExplicitBasis) {
+  ShapeTable table(beta);
+  const std::array<double, 4> aspect_ratios{1.0, 0.8, 0.625, 0.5};
+  for (double alpha : aspect_ratios)
+    table.add(alpha);
+  RandomStream stream(11, 5);
+  double worst = 0;
+  for (int pair = 0; pair < 2000; ++pair) {
+    const ConvexBody a = table.body(
+        stream.uniform(0.5, 1.0), aspect_ratios[static_cast<std::size_t>(pair % 4)], random_rotation(stream));
+    const ConvexBody b =
+        table.body(stream.uniform(0.5, 1.0), aspect_ratios[static_cast<std::size_t>((pair / 4) % 4)],
+                   random_rotation(stream));
+    const Vec3 u = direction(std::acos(stream.uniform(-1.0, 1.0)), stream.uniform(0.0, 2.0 * pi));
+    const Vec3 d = (aniso::dem::support_value(a, u) + aniso::dem::support_value(b, -u) - 1e-3) * u;
+    const ContactGeometry g = aniso::dem::convex_contact(a, b, d, d, false, true);
+    const Vec3 t0 = g.normal.unitOrthogonal(), t1 = g.normal.cross(t0);
+    const auto plane_matrix = [&](const aniso::dem::Support& s) {
+      Eigen::Matrix2d m;
+      for (int c = 0; c < 2; ++c) {
+        const Vec3 column = aniso::dem::radius_tensor_times(s, c == 0 ? t0 : t1);
+        m(0, c) = column.dot(t0);
+        m(1, c) = column.dot(t1);
+      }
+      return m;
+    };
+    const Eigen::Matrix2d curvature = plane_matrix(aniso::dem::support(a, g.normal)).inverse() +
+                                      plane_matrix(aniso::dem::support(b, -g.normal)).inverse();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(curvature);
+    const double explicit_small = 1.0 / solver.eigenvalues()[1],
+                 explicit_large = 1.0 / solver.eigenvalues()[0];
+    worst = std::max({worst, std::abs(g.principal_radii[0] / explicit_small - 1.0),
+                      std::abs(g.principal_radii[1] / explicit_large - 1.0)});
+  }
+  std::printf("[ measured ] 2000 contacts: relative principal radii within %.3g of the explicit basis\n",
+              worst);
+  EXPECT_LT(worst, 1e-10);
+}
+
 TEST(OvoidContact, CoaxialCapAgainstCap) {
   for (double alpha : {0.8, 0.625, 0.5}) {
     expect_contact(alpha, Quat::Identity(), alpha, Quat::Identity(), Vec3(0, 0, 2.0 * alpha - overlap),
