@@ -58,6 +58,15 @@ Vec3 direction(double polar, double azimuth) {
   return {std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar)};
 }
 
+// The paper's four shapes (paper section 2).
+constexpr std::array<double, 4> aspect_ratios{1.0, 0.8, 0.625, 0.5};
+ShapeTable paper_shapes() {
+  ShapeTable table(beta);
+  for (double alpha : aspect_ratios)
+    table.add(alpha);
+  return table;
+}
+
 Quat random_rotation(RandomStream& stream) {
   const double w = stream.normal(), x = stream.normal(), y = stream.normal(), z = stream.normal();
   return Quat(w, x, y, z).normalized();
@@ -126,10 +135,7 @@ double angle_between(const Vec3& u, const Vec3& v) {
 }
 
 TEST(OvoidContact, RandomPairsAgreeWithBruteForceAndTheShapeLibrary) {
-  ShapeTable table(beta);
-  const std::array<double, 4> aspect_ratios{1.0, 0.8, 0.625, 0.5};
-  for (double alpha : aspect_ratios)
-    table.add(alpha);
+  const ShapeTable table = paper_shapes();
   RandomStream stream(2015, 4);
   constexpr int n_pairs = 10000;
   int n_touching = 0, max_iterations = 0, n_reported = 0;
@@ -275,10 +281,7 @@ TEST(OvoidSupport, RadiusTensorIsTheDerivativeOfTheSupportPoint) {
 // closed forms of the two radius tensors), against the explicit 2x2 matrices in an orthonormal
 // basis, inverted, summed and diagonalised by Eigen, at the contact of random pairs.
 TEST(OvoidContact, RelativePrincipalRadiiAgreeWithAnExplicitBasis) {
-  ShapeTable table(beta);
-  const std::array<double, 4> aspect_ratios{1.0, 0.8, 0.625, 0.5};
-  for (double alpha : aspect_ratios)
-    table.add(alpha);
+  const ShapeTable table = paper_shapes();
   RandomStream stream(11, 5);
   double worst = 0;
   for (int pair = 0; pair < 2000; ++pair) {
