@@ -21,7 +21,7 @@ for alpha in 1.0 0.5; do
 done
 results=$work/compare.txt
 : >"$results"
-for repeat in $(seq "$repeats"); do
+for _ in $(seq "$repeats"); do
   for alpha in 0.5 1.0; do
     for bin in "$a" "$b"; do
       rate=$("$bin" "$work/alpha_$alpha/prepared.h5" "$steps" 1 | sed 's/.*: \([0-9.e+]*\) particle-steps.*/\1/')
