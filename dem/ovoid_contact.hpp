@@ -14,8 +14,6 @@
 
 #include "common/tensor.hpp"
 
-#include <array>
-
 namespace aniso::dem {
 
 /// One particle's geometry in the world frame, centre excluded. A sphere is a cap with

@@ -8,8 +8,8 @@ namespace {
 
 // sin and cos of half of `angle`. A particle turns by far less than 1e-3 rad in a time step;
 // there the series to x^7 and x^8 is exact to round-off (the first term left out is below
-// 1e-28 of the result) and costs a tenth of the library's sincos. Larger angles take the
-// library's.
+// 1e-28 of the result) for a few multiplications instead of the library's sincos. Larger
+// angles take the library's.
 struct HalfAngle {
   double sine, cosine;
 };
