@@ -75,6 +75,10 @@ DemConfig read_dem_config(config::Reader& reader) {
                   "explicit time step (0: from time_step_fraction); refused above the critical step");
   i.damping = reader.real("dem.integration.damping", i.damping, units::none, Range::closed(0.0, 1.0),
                           "viscous contact damping ratio during loading");
+  i.global_damping =
+      reader.real("dem.integration.global_damping", i.global_damping, units::none, Range::closed(0.0, 10.0),
+                  "global damping of the fluctuating motion during loading, as a fraction of "
+                  "critical for the mean particle on the mean contact stiffness");
   i.skin = reader.real("dem.integration.skin", i.skin, units::none, Range::open_closed(0.0, 1.0),
                        "neighbour-list skin in units of D50");
   i.control_interval =
@@ -101,16 +105,25 @@ DemConfig read_dem_config(config::Reader& reader) {
       "most compaction cycles (paper: 14); stops at the first that seizes at or below the target");
   pr.target_void_ratio = reader.real("dem.prepare.target_void_ratio", pr.target_void_ratio, units::none,
                                      Range::positive(), "keep the assembly nearest this void ratio");
+  pr.void_ratio_tolerance = reader.real(
+      "dem.prepare.void_ratio_tolerance", pr.void_ratio_tolerance, units::none, Range::positive(),
+      "largest |e - target_void_ratio| of the prepared assembly; beyond it prepare fails (exit 5)");
   pr.confining_pressure = reader.real("dem.prepare.confining_pressure", pr.confining_pressure, units::pascal,
                                       Range::positive(), "isotropic consolidation pressure p0");
   pr.inertial_number = reader.real("dem.prepare.inertial_number", pr.inertial_number, units::none,
                                    Range::open(0.0, 1.0), "compaction and consolidation rate as I at p0");
   pr.damping = reader.real("dem.prepare.damping", pr.damping, units::none, Range::closed(0.0, 1.0),
                            "contact damping ratio while compacting");
+  pr.global_damping =
+      reader.real("dem.prepare.global_damping", pr.global_damping, units::none, Range::closed(0.0, 10.0),
+                  "global damping ratio of the fluctuating motion while compacting");
   pr.seize_stress = reader.real("dem.prepare.seize_stress", pr.seize_stress, units::pascal, Range::positive(),
                                 "mean stress at which a compacting assembly counts as seized");
   require_input(pr.seize_stress < pr.confining_pressure,
                 "config: dem.prepare.seize_stress must be below dem.prepare.confining_pressure");
+  pr.seize_force_ratio =
+      reader.real("dem.prepare.seize_force_ratio", pr.seize_force_ratio, units::none, Range::open(0.0, 1.0),
+                  "unbalanced-force ratio below which a held assembly above the seize stress has seized");
   pr.agitation_speed = reader.real("dem.prepare.agitation_speed", pr.agitation_speed, units::none,
                                    Range::non_negative(), "rms random speed between cycles, in sqrt(p0/rho)");
   pr.consolidation_tolerance =
@@ -129,6 +142,24 @@ DemConfig read_dem_config(config::Reader& reader) {
                    "compressive strains -eps11 at which checkpoints are written");
   l.history_interval = reader.real("dem.load.history_interval", l.history_interval, units::none,
                                    Range::positive(), "strain between history rows");
+
+  auto& e = c.equilibrium;
+  e.tolerance = reader.real("dem.equilibrium.tolerance", e.tolerance, units::none, Range::open(0.0, 1.0),
+                            "unbalanced-force ratio (mean |net force| / mean |contact force|) below which "
+                            "a state counts as static");
+  e.stress_tolerance =
+      reader.real("dem.equilibrium.stress_tolerance", e.stress_tolerance, units::none, Range::open(0.0, 0.5),
+                  "|p - p_target| / p_target required together with the force tolerance");
+  e.damping = reader.real("dem.equilibrium.damping", e.damping, units::none, Range::open_closed(0.0, 10.0),
+                          "global damping ratio while relaxing to equilibrium");
+  e.verify_steps = reader.integer("dem.equilibrium.verify_steps", e.verify_steps, Range::closed(0, 1e9),
+                                  "time steps the tolerances must then keep holding with the damping of the "
+                                  "run (an unstable balance fails this and relaxes on)");
+  e.max_steps = reader.integer("dem.equilibrium.max_steps", e.max_steps, Range::closed(1, 1e10),
+                               "most time steps of one relaxation; beyond it the run stops (exit 5)");
+  e.at_checkpoints =
+      reader.boolean("dem.equilibrium.at_checkpoints", e.at_checkpoints,
+                     "relax to equilibrium (cell held, p servoed) before each load checkpoint");
   return c;
 }
 

@@ -39,6 +39,7 @@ struct IntegrationConfig {
   double time_step_fraction = 0.2; ///< of the Rayleigh critical step of the smallest particle
   double time_step = 0.0;          ///< explicit step [s]; 0 = from the fraction; refused above critical
   double damping = 0.05;           ///< viscous contact damping ratio during loading (see docs/methods/dem.md)
+  double global_damping = 0.0;     ///< global damping of the fluctuating motion during loading, of critical
   double skin = 0.1;               ///< neighbour-list skin in units of D50
   std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
   double servo_gain = 0.2;            ///< fraction of the stress error removed per servo update
@@ -50,11 +51,14 @@ struct PrepareConfig {
   double initial_solid_fraction = 0.25;           ///< sparse random arrangement
   std::int64_t cycles = 14;                       ///< compaction cycles
   double target_void_ratio = 0.556;               ///< keep the cycle nearest this
+  double void_ratio_tolerance = 0.003;            ///< a prepared e further than this from the target fails
   double confining_pressure = 100e3;              ///< p0 [Pa]
   double inertial_number = 1e-2;                  ///< compaction and consolidation rate, I at p0
   double damping = 0.3;                           ///< contact damping ratio while compacting
+  double global_damping = 0.0;                    ///< global damping ratio while compacting
   double seize_stress = 1e3;                      ///< p at which a compacting assembly counts as seized [Pa]
-  double agitation_speed = 0.05;          ///< rms random speed between cycles, in units of sqrt(p0/rho)
+  double seize_force_ratio = 1e-2;                ///< unbalanced-force ratio a held, seized assembly is below
+  double agitation_speed = 0.1;           ///< rms random speed between cycles, in units of sqrt(p0/rho)
   double consolidation_tolerance = 0.005; ///< |p - p0| / p0 at the end of consolidation
 };
 
@@ -66,6 +70,16 @@ struct LoadConfig {
   double history_interval = 1e-4;         ///< strain between history rows
 };
 
+/// Static equilibrium: of the prepared assembly, of every load checkpoint, of `hold`.
+struct EquilibriumConfig {
+  double tolerance = 1e-4;          ///< unbalanced-force ratio at which a state counts as static
+  double stress_tolerance = 1e-3;   ///< |p - p_target| / p_target at the same time
+  double damping = 0.1;             ///< global damping ratio while relaxing
+  std::int64_t verify_steps = 2000; ///< the tolerances must then hold this long without extra damping
+  std::int64_t max_steps = 500000;  ///< a relaxation that needs more stops with exit 5
+  bool at_checkpoints = true;       ///< relax before writing each load checkpoint
+};
+
 struct DemConfig {
   std::uint64_t seed = 1;
   std::string output_dir = ".";
@@ -74,6 +88,7 @@ struct DemConfig {
   IntegrationConfig integration;
   PrepareConfig prepare;
   LoadConfig load;
+  EquilibriumConfig equilibrium;
 };
 
 /// Reads every [dem] key through `reader` (which records and range-checks them).

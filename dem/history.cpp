@@ -44,6 +44,8 @@ const std::vector<HistoryColumn>& history_columns() {
        "mean e1^2 of the particle axes e (ovoids; 1/3 for spheres, whose axis is undefined)"},
       {"axis_orientation_22", units::none, "mean e2^2 of the particle axes"},
       {"axis_orientation_33", units::none, "mean e3^2 of the particle axes"},
+      {"unbalanced_force_ratio", units::none,
+       "mean |net contact force| over particles with contacts / mean |contact force|"},
   };
   return columns;
 }
@@ -79,7 +81,7 @@ void History::write(const std::string& folder, const h5::Provenance& provenance)
     {
       h5::File file = h5::File::create(atomic.temp_path());
       file.write_attribute("schema", std::string_view("aniso-history"));
-      file.write_attribute("schema_version", std::int64_t{2});
+      file.write_attribute("schema_version", std::int64_t{3});
       h5::Group group = file.create_group("history");
       for (std::size_t c = 0; c < names.size(); ++c) {
         group.write_dataset<double>(names[c].name, columns_[c], {columns_[c].size()}, names[c].unit,

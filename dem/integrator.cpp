@@ -25,6 +25,13 @@ void kick(Particles& particles, double dt) {
   }
 }
 
+void damp_velocities(Particles& particles, double factor) {
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
+    particles.velocity[k] *= factor;
+    particles.angular_velocity[k] *= factor;
+  }
+}
+
 void drift(Particles& particles, PeriodicCell& cell, const Vec3& strain_rate, double dt) {
   const Vec3 old_lengths = cell.lengths();
   const Vec3 new_lengths = old_lengths.cwiseProduct(Vec3::Ones() + dt * strain_rate);

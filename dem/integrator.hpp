@@ -12,6 +12,12 @@ namespace aniso::dem {
 /// axisymmetric for ovoids, so I_world^-1 needs only the particle axis).
 void kick(Particles& particles, double dt);
 
+/// Global viscous damping of the fluctuating motion: multiplies every owned particle's
+/// fluctuating and angular velocity by `factor` = exp(-gamma h), the exact decay over h of
+/// dv/dt = -gamma v. Acting on the fluctuating velocity only, it leaves the affine field of
+/// the deforming cell undamped (Kuhn's OVAL practice, shared/reference/ovoid.md).
+void damp_velocities(Particles& particles, double factor);
+
 /// Moves particles by their fluctuating velocity, then strains the cell by
 /// `strain_rate` over dt and maps every position affinely with it; wraps into the cell.
 /// Ovoids also turn by their exact torque-free rotation over dt; a sphere's orientation

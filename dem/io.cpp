@@ -67,10 +67,16 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
       {"servo_max_rate", s.servo.max_rate, units::per_second},
       {"servo_integral_intervals", s.servo.integral_intervals, units::none},
       {"explosion_overlap", s.explosion_overlap, units::none},
+      {"global_damping", s.global_damping, units::none},
+      {"global_damping_rate", simulation.global_damping_rate(), units::per_second},
       {"ovoid_splice_angle", s.splice_angle, units::radian},
       {"hertz_radius_curvature", s.hertz_radius == HertzRadius::curvature ? 1.0 : 0.0, units::none},
   };
   c.rng_state = rng_state;
+  // Fresh at the stored step (collective: every rank writes its part of the checkpoint).
+  const Equilibrium equilibrium = measure_equilibrium(p, simulation.neighbors(), simulation.comm());
+  c.unbalanced_force_ratio = equilibrium.unbalanced_force_ratio;
+  c.kinetic_elastic_ratio = equilibrium.kinetic_elastic_ratio();
   return c;
 }
 
@@ -93,6 +99,8 @@ SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, co
   if (h5::has_parameter(checkpoint, "ovoid_splice_angle")) s.splice_angle = get("ovoid_splice_angle");
   if (h5::has_parameter(checkpoint, "hertz_radius_curvature") && get("hertz_radius_curvature") != 0.0)
     s.hertz_radius = HertzRadius::curvature;
+  // Checkpoints written before the global damping landed ran without it.
+  if (h5::has_parameter(checkpoint, "global_damping")) s.global_damping = get("global_damping");
   return s;
 }
 
@@ -118,6 +126,8 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
                         true, comm);
   simulation.restore_contacts(checkpoint.contacts, path);
   simulation.restore_stress();
+  if (h5::has_parameter(checkpoint, "global_damping_rate"))
+    simulation.restore_global_damping_rate(h5::parameter(checkpoint, "global_damping_rate", path));
   return simulation;
 }
 

@@ -3,6 +3,7 @@
 #include "common/h5/checkpoint.hpp"
 #include "dem/history.hpp"
 #include "dem/io.hpp"
+#include "dem/relax.hpp"
 #include "dem/settings.hpp"
 
 #include <fmt/format.h>
@@ -53,7 +54,8 @@ std::vector<double> history_row(const Simulation& simulation, const DemConfig& c
           (m.mean_stress - config.load.mean_stress) / config.load.mean_stress,
           m.axis_orientation(0, 0),
           m.axis_orientation(1, 1),
-          m.axis_orientation(2, 2)};
+          m.axis_orientation(2, 2),
+          m.unbalanced_force_ratio};
 }
 
 } // namespace
@@ -69,6 +71,7 @@ void start_loading(Simulation& simulation, const DemConfig& config) {
   simulation.reset_reference_lengths();
   simulation.set_friction(config.material.friction);
   simulation.set_damping(config.integration.damping);
+  simulation.set_global_damping(config.integration.global_damping);
   // The servoed axis must outrun dilatancy but not the assembly's own response.
   simulation.set_servo_max_rate(20.0 * rate);
   h5::CellState state = simulation.cell_state();
@@ -118,12 +121,21 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
     if (next_checkpoint < load.checkpoint_strains.size() &&
         strain >= load.checkpoint_strains[next_checkpoint]) {
       const std::string path = load_checkpoint_path(output_dir, next_checkpoint);
+      if (config.equilibrium.at_checkpoints) {
+        const Relaxation relaxed =
+            relax_to_equilibrium(simulation, config.equilibrium, config.equilibrium.max_steps, logger,
+                                 fmt::format("relaxation before checkpoint {}", next_checkpoint));
+        summary.relaxation_steps += relaxed.steps;
+        history.append(history_row(simulation, config)); // the relaxed state, at the same strain
+      }
       h5::write_checkpoint(path, to_checkpoint(simulation, config.particles.d50, {}), provenance,
                            simulation.comm());
       if (simulation.comm().is_root()) history.write(output_dir, provenance);
-      logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e})", next_checkpoint,
-                   strain, path, mean_stress_compression_positive(simulation.stress()),
-                   simulation.servo_error());
+      logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
+                   "ratio {:.2e}, kinetic/elastic {:.2e})",
+                   next_checkpoint, strain, path, mean_stress_compression_positive(simulation.stress()),
+                   simulation.servo_error(), simulation.equilibrium().unbalanced_force_ratio,
+                   simulation.equilibrium().kinetic_elastic_ratio());
       summary.checkpoints.push_back(path);
       ++next_checkpoint;
     }

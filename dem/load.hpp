@@ -20,6 +20,7 @@ struct LoadSummary {
   double peak_stress_ratio = 0;
   double peak_strain = 0;
   std::int64_t steps = 0;
+  std::int64_t relaxation_steps = 0; ///< of `steps`, spent relaxing before checkpoints
   double wall_seconds = 0;
   std::vector<std::string> checkpoints;
 };

@@ -2,6 +2,7 @@
 
 #include "common/exact_sum.hpp"
 #include "common/exchange.hpp"
+#include "dem/equilibrium.hpp"
 #include "dem/rotation.hpp"
 
 #include <array>
@@ -54,26 +55,20 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
   m.deviatoric_stress = deviatoric_q(m.stress);
   m.void_ratio = (cell.volume() - solid_volume) / solid_volume;
 
-  // Energies and the contact list by ids, counted once each.
+  // The contact list by ids, counted once each.
   const auto& pairs = neighbors.pairs();
   const auto& records = neighbors.records();
-  const auto& history = neighbors.history();
-  std::array<ExactSum, 2> energy; // kinetic, elastic
   std::vector<char> contact_ids;
   ByteWriter writer(contact_ids);
   for (std::size_t c = 0; c < pairs.size(); ++c) {
     if (!counted_here(particles, pairs[c], records[c])) continue;
     writer.put(particles.id[pairs[c].i]);
     writer.put(particles.id[pairs[c].j]);
-    energy[1].add(0.4 * records[c].normal_force * records[c].overlap); // integral of the Hertz force
-    // Incremental Mindlin: the history holds the elastic tangential force F_t; its energy is F_t^2 / (2 k_t).
-    energy[1].add(0.5 * history[c].tangential_force.squaredNorm() / records[c].tangential_stiffness);
   }
-  for (std::size_t k = 0; k < particles.n_owned; ++k) {
-    energy[0].add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
-    energy[0].add(
-        rotational_energy(particles.inertia[k], particles.orientation[k], particles.angular_velocity[k]));
-  }
+  const Equilibrium equilibrium = measure_equilibrium(particles, neighbors, comm);
+  m.kinetic_energy = equilibrium.kinetic_energy;
+  m.elastic_energy = equilibrium.elastic_energy;
+  m.unbalanced_force_ratio = equilibrium.unbalanced_force_ratio;
   // Axis orientation tensor of the ovoids: 6 components and the count, summed exactly.
   std::array<ExactSum, 7> axes;
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
@@ -92,9 +87,6 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
       voigt[c] = axis_sums[static_cast<std::size_t>(c)].value() / n_ovoids;
     m.axis_orientation = from_voigt(voigt);
   }
-  const std::vector<ExactSum> energies = comm.sum_exact(std::span<const ExactSum>(energy));
-  m.kinetic_energy = energies[0].value();
-  m.elastic_energy = energies[1].value();
 
   // Rattlers need the whole contact graph: every rank assembles it from everyone's contacts.
   const auto n = static_cast<std::size_t>(n_particles);

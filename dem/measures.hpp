@@ -27,8 +27,9 @@ struct StateMeasures {
   double coordination_no_rattlers =
       0; ///< the same without rattlers (fewer than 2 contacts, removed iteratively)
   std::int64_t n_rattlers = 0;
-  double kinetic_energy = 0; ///< fluctuating translational plus rotational [J]
-  double elastic_energy = 0; ///< Hertz normal plus tangential spring energy [J]
+  double kinetic_energy = 0;         ///< fluctuating translational plus rotational [J]
+  double elastic_energy = 0;         ///< Hertz normal plus tangential spring energy [J]
+  double unbalanced_force_ratio = 0; ///< mean |net force| / mean |contact force| (dem/equilibrium.hpp)
   /// Mean e (x) e of the ovoids' axes e; I/3 when there are no ovoids (a sphere has no axis).
   Mat3 axis_orientation = Mat3::Identity() / 3.0;
 };

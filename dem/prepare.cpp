@@ -2,11 +2,13 @@
 
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
+#include "dem/relax.hpp"
 #include "dem/rotation.hpp"
 #include "dem/settings.hpp"
 #include "dem/size_distribution.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <cmath>
@@ -18,18 +20,6 @@ namespace {
 
 using h5::AxisMode;
 
-// Kinetic energy of all particles on all ranks (collective, exact).
-double kinetic_energy(const Simulation& simulation) {
-  const Particles& particles = simulation.particles();
-  ExactSum energy;
-  for (std::size_t k = 0; k < particles.n_owned; ++k) {
-    energy.add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
-    energy.add(
-        rotational_energy(particles.inertia[k], particles.orientation[k], particles.angular_velocity[k]));
-  }
-  return simulation.comm().sum_exact(energy).value();
-}
-
 h5::CellState isotropic_strain_control(const Simulation& simulation, double rate) {
   h5::CellState state = simulation.cell_state();
   state.mode = {AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::strain_rate};
@@ -39,7 +29,8 @@ h5::CellState isotropic_strain_control(const Simulation& simulation, double rate
 }
 
 // Compacts at `rate` (negative) until the assembly seizes: a load-bearing
-// network carries at least the seize stress while nearly at rest. Whenever p
+// network carries at least the seize stress while nearly at rest and with its
+// forces balanced (unbalanced-force ratio below seize_force_ratio). Whenever p
 // passes the seize stress the cell is held still, so that a hot, colliding
 // assembly is not mistaken for a seized one: if the stress then decays as the
 // motion is damped out, compaction resumes. Returns the steps taken.
@@ -60,10 +51,17 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
     simulation.step();
     if (simulation.step_count() % interval != 0) continue;
     const double p = mean_stress_compression_positive(simulation.stress());
-    const double energy_ratio = kinetic_energy(simulation) / (std::max(p, 1.0) * simulation.cell().volume());
+    const double energy_ratio =
+        simulation.equilibrium().kinetic_energy / (std::max(p, 1.0) * simulation.cell().volume());
     progress.update(std::clamp(p, 0.0, prepare.seize_stress));
     const bool above = p >= prepare.seize_stress;
-    if (above && energy_ratio < 1e-4) break;
+    // Only a held cell tells a load-bearing network from one that the compaction itself
+    // loads: the viscous contact forces of a moving cell carry p of their own.
+    // A network that carries p only while it still moves unloads once held; a seized one keeps
+    // p with its forces balanced.
+    if (holding && above && energy_ratio < 1e-4 &&
+        simulation.equilibrium().unbalanced_force_ratio < prepare.seize_force_ratio)
+      break;
     const bool stalled = holding && simulation.step_count() - held_since > max_hold_steps;
     if (above != holding || stalled) {
       // Stalled: still above the seize stress but never calm; compact on and look again.
@@ -106,36 +104,22 @@ void agitate(Simulation& simulation, double rms_speed, RandomStream& stream) {
     particles.velocity[k] -= drift;
 }
 
-void consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger) {
+// Consolidates to p0 with the stress servo on all three axes and relaxes to static
+// equilibrium there (dem/relax.hpp): p within consolidation_tolerance and the
+// unbalanced-force ratio below dem.equilibrium.tolerance.
+Relaxation consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger) {
   h5::CellState state = simulation.cell_state();
   state.mode = {AxisMode::stress, AxisMode::stress, AxisMode::stress};
   state.target = Vec3::Constant(-config.prepare.confining_pressure);
   state.hold_mean_stress = false;
+  state.servo_state = Vec3::Zero();
   simulation.set_control(state);
-  const double p0 = config.prepare.confining_pressure;
-  const std::int64_t interval = simulation.settings().control_interval;
+  EquilibriumConfig tolerances = config.equilibrium;
+  tolerances.stress_tolerance = config.prepare.consolidation_tolerance;
   const std::int64_t max_steps =
+      config.equilibrium.max_steps +
       200 * static_cast<std::int64_t>(0.05 / (rate * simulation.settings().time_step));
-  Progress progress(logger, "consolidation to p0", 1.0, 10.0);
-  std::int64_t settled_checks = 0;
-  for (std::int64_t n = 1;; ++n) {
-    simulation.step();
-    if (simulation.step_count() % interval != 0) continue;
-    const double p = mean_stress_compression_positive(simulation.stress());
-    const double error = std::abs(p - p0) / p0;
-    const double energy_ratio = kinetic_energy(simulation) / (p * simulation.cell().volume());
-    progress.update(std::clamp(1.0 - error, 0.0, 1.0));
-    // Require the state to hold for 20 consecutive checks, so a passing oscillation does not count.
-    settled_checks =
-        (error < config.prepare.consolidation_tolerance && energy_ratio < 1e-5) ? settled_checks + 1 : 0;
-    if (settled_checks >= 20) break;
-    if (n > max_steps) {
-      throw ConvergenceError(
-          fmt::format("consolidation to p0 = {:.3g} Pa did not settle in {} steps (p = {:.4g} Pa, "
-                      "kinetic/pV = {:.2g})",
-                      p0, max_steps, p, energy_ratio));
-    }
-  }
+  return relax_to_equilibrium(simulation, tolerances, max_steps, logger, "consolidation to p0");
 }
 
 // A uniformly distributed rotation: a normalised vector of four standard normals.
@@ -195,6 +179,7 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
   SimulationSettings settings = settings_from_config(config, diameters.back());
   settings.material.friction = config.material.friction_prepare;
   settings.material.damping_ratio = config.prepare.damping;
+  settings.global_damping = config.prepare.global_damping;
   return Simulation(std::move(particles), state, settings, 0.0, 0, false, comm);
 }
 
@@ -241,13 +226,34 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger,
   chosen.set_friction(config.material.friction);
   chosen.set_damping(config.prepare.damping);
   chosen.set_servo_max_rate(rate);
-  consolidate(chosen, config, rate, logger);
+  // The relaxation proves the state static with the damping that loading will use.
+  chosen.set_global_damping(config.integration.global_damping);
+  const Relaxation consolidation = consolidate(chosen, config, rate, logger);
   chosen.set_damping(config.integration.damping);
   result.consolidated = chosen.measure();
+  logger->info("consolidation took {} steps; unbalanced-force ratio {:.2e}, kinetic/elastic {:.2e}",
+               consolidation.steps, consolidation.equilibrium.unbalanced_force_ratio,
+               consolidation.equilibrium.kinetic_elastic_ratio());
   logger->info(
-      "consolidated to p = {:.4g} Pa: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f} ({} rattlers)",
+      "consolidated to p = {:.4g} Pa: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f} ({} rattlers, "
+      "{:.1f}%)",
       result.consolidated.mean_stress, result.consolidated.void_ratio, result.consolidated.coordination,
-      result.consolidated.coordination_no_rattlers, result.consolidated.n_rattlers);
+      result.consolidated.coordination_no_rattlers, result.consolidated.n_rattlers,
+      100.0 * static_cast<double>(result.consolidated.n_rattlers) / static_cast<double>(pc.count));
+  const double miss = result.consolidated.void_ratio - pr.target_void_ratio;
+  if (std::abs(miss) > pr.void_ratio_tolerance) {
+    throw ConvergenceError(fmt::format(
+        "prepare: the assembly reached e = {:.4f}, {} the target dem.prepare.target_void_ratio = {:.4f} by "
+        "more than dem.prepare.void_ratio_tolerance = {:.4f} after {} of at most {} cycles (cycle void "
+        "ratios "
+        "{:.4f}); {}",
+        result.consolidated.void_ratio, miss > 0 ? "above" : "below", pr.target_void_ratio,
+        pr.void_ratio_tolerance, result.cycle_void_ratios.size(), pr.cycles,
+        fmt::join(result.cycle_void_ratios, ", "),
+        miss > 0 ? "raise dem.prepare.cycles or dem.prepare.agitation_speed, or lower "
+                   "dem.material.friction_prepare (docs/methods/dem.md, 'Reaching the target void ratio')"
+                 : "the first cycle already packs denser: raise dem.material.friction_prepare"));
+  }
   result.simulation = std::move(chosen);
   result.rng_state = {sizes.state(), placement.state(), agitation.state()};
   return result;

@@ -24,6 +24,7 @@ SimulationSettings settings_from_config(const DemConfig& config, double smallest
   s.control_interval = config.integration.control_interval;
   s.servo.gain = config.integration.servo_gain;
   s.explosion_overlap = config.integration.explosion_overlap;
+  s.global_damping = config.integration.global_damping;
   return s;
 }
 

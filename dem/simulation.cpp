@@ -23,12 +23,14 @@ Simulation::Simulation(Particles particles, const h5::CellState& control, const 
   require_stable_time_step(settings_.time_step,
                            critical_time_step(particles_, settings_.density, settings_.material));
   n_particles_ = static_cast<std::int64_t>(particles_.size());
-  ExactSum solid;
+  ExactSum solid, mass;
   for (std::size_t k = 0; k < particles_.size(); ++k) {
+    mass.add(particles_.mass[k]);
     solid.add(particle_volume(particles_.radius[k], particles_.aspect_ratio[k], settings_.splice_angle));
     shapes_.add(particles_.aspect_ratio[k]);
   }
   solid_volume_ = solid.value();
+  mean_mass_ = mass.value() / static_cast<double>(n_particles_);
   const double max_radius = *std::max_element(particles_.radius.begin(), particles_.radius.end());
   neighbors_.set_max_radius(max_radius);
   reach_ = 2 * max_radius + settings_.skin;
@@ -46,6 +48,7 @@ Simulation::Simulation(Particles particles, const h5::CellState& control, const 
   if (!forces_valid) {
     compute_forces();
     stress_ = average_stress(particles_, cell_, neighbors_, comm);
+    update_equilibrium();
   }
 }
 
@@ -81,14 +84,35 @@ void Simulation::update_control() {
   if (!std::isfinite(stress_.sum())) {
     throw NumericalError(fmt::format("step {}: the stress is not finite: the run exploded", step_));
   }
+  update_equilibrium();
   const double interval = static_cast<double>(settings_.control_interval) * settings_.time_step;
   update_strain_rates(control_, stress_, axial_stiffness(neighbors_, particles_, cell_.volume(), comm()),
                       interval, settings_.servo);
 }
 
+void Simulation::update_equilibrium() {
+  equilibrium_ = measure_equilibrium(particles_, neighbors_, comm());
+  update_damping_rate();
+}
+
+void Simulation::set_global_damping(double ratio) {
+  settings_.global_damping = ratio;
+  update_damping_rate();
+}
+
+void Simulation::update_damping_rate() {
+  // Critical damping of a particle of mean mass on one contact of mean stiffness is
+  // gamma = 2 sqrt(k/m); without contacts there is nothing to scale by and nothing to damp.
+  damping_rate_ = equilibrium_.n_contacts > 0 ? 2.0 * settings_.global_damping *
+                                                    std::sqrt(equilibrium_.mean_normal_stiffness / mean_mass_)
+                                              : 0.0;
+}
+
 void Simulation::step() {
   const double dt = settings_.time_step;
+  const double damping_factor = std::exp(-0.5 * dt * damping_rate_);
   kick(particles_, 0.5 * dt);
+  if (damping_rate_ > 0) damp_velocities(particles_, damping_factor);
   drift(particles_, cell_, control_.strain_rate, dt);
   ListMotion motion = neighbors_.measure_motion(particles_, cell_);
   if (comm().size() > 1) {
@@ -104,6 +128,7 @@ void Simulation::step() {
   }
   compute_forces();
   kick(particles_, 0.5 * dt);
+  if (damping_rate_ > 0) damp_velocities(particles_, damping_factor);
   time_ += dt;
   ++step_;
   if (step_ % settings_.control_interval == 0) update_control();
@@ -115,6 +140,7 @@ StateMeasures Simulation::measure() const {
 
 void Simulation::restore_stress() {
   stress_ = average_stress(particles_, cell_, neighbors_, comm());
+  equilibrium_ = measure_equilibrium(particles_, neighbors_, comm());
 }
 
 void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::string& path) {

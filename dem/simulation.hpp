@@ -9,6 +9,7 @@
 #include "dem/config.hpp"
 #include "dem/contact_law.hpp"
 #include "dem/domain.hpp"
+#include "dem/equilibrium.hpp"
 #include "dem/forces.hpp"
 #include "dem/halo.hpp"
 #include "dem/measures.hpp"
@@ -28,6 +29,9 @@ struct SimulationSettings {
   double skin = 0;                    ///< neighbour-list skin [m]
   std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
   ServoSettings servo;
+  /// Global damping of the fluctuating motion as a fraction of critical for the mean
+  /// particle on the mean contact stiffness: gamma = 2 ratio sqrt(k_n / m) (docs/methods/dem.md).
+  double global_damping = 0;
   double explosion_overlap = 0.05; ///< stop when an overlap exceeds this fraction of the smaller radius
   double splice_angle = 0.7853981633974483; ///< ovoid splice angle beta [rad], assembly-wide
   HertzRadius hertz_radius = HertzRadius::halfwidth;
@@ -71,6 +75,14 @@ public:
   void set_friction(double friction) { settings_.material.friction = friction; }
   /// Changes the contact damping ratio.
   void set_damping(double ratio) { settings_.material.damping_ratio = ratio; }
+  /// Changes the global damping ratio, and its rate from the last equilibrium measure.
+  void set_global_damping(double ratio);
+  /// Rate gamma of the global damping [1/s], set at every control update.
+  [[nodiscard]] double global_damping_rate() const { return damping_rate_; }
+  /// Restores the damping rate of a checkpoint (exact restarts).
+  void restore_global_damping_rate(double rate) { damping_rate_ = rate; }
+  /// Equilibrium measures at the last control update (or restore_stress()).
+  [[nodiscard]] const Equilibrium& equilibrium() const { return equilibrium_; }
   /// Makes the current lengths the zero-strain reference.
   void reset_reference_lengths() { cell_ = PeriodicCell(cell_.lengths()); }
   /// Caps the servo's strain rate [1/s].
@@ -90,6 +102,8 @@ private:
   [[nodiscard]] double restored_hertz_radius(std::uint32_t i, std::uint32_t j,
                                              const ContactRecord& record) const;
   void update_control();
+  void update_equilibrium();
+  void update_damping_rate();
   void rebuild_decomposition();
 
   Particles particles_;
@@ -107,6 +121,9 @@ private:
   double time_ = 0;
   std::int64_t step_ = 0;
   double solid_volume_ = 0;
+  double mean_mass_ = 0;    ///< over all particles [kg]
+  double damping_rate_ = 0; ///< gamma of the global damping [1/s]
+  Equilibrium equilibrium_;
 };
 
 } // namespace aniso::dem

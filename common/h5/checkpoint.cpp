@@ -397,6 +397,10 @@ void write_content(File& file, const Checkpoint& local, const Provenance& proven
   file.write_attribute("step", local.step);
   file.write_attribute("step_units", std::string_view("1"));
   file.write_attribute_with_units("time_step", local.time_step, "s");
+  if (std::isfinite(local.unbalanced_force_ratio))
+    file.write_attribute_with_units("unbalanced_force_ratio", local.unbalanced_force_ratio, "1");
+  if (std::isfinite(local.kinetic_elastic_ratio))
+    file.write_attribute_with_units("kinetic_elastic_ratio", local.kinetic_elastic_ratio, "1");
 
   {
     const CellState& cell = local.cell;
@@ -516,6 +520,10 @@ Checkpoint read_file(const std::string& path) {
   checkpoint.time = file.read_attribute<double>("time");
   checkpoint.step = file.read_attribute<std::int64_t>("step");
   checkpoint.time_step = file.read_attribute<double>("time_step");
+  if (file.has_attribute("unbalanced_force_ratio"))
+    checkpoint.unbalanced_force_ratio = file.read_attribute<double>("unbalanced_force_ratio");
+  if (file.has_attribute("kinetic_elastic_ratio"))
+    checkpoint.kinetic_elastic_ratio = file.read_attribute<double>("kinetic_elastic_ratio");
 
   {
     const Group group = file.open_group("cell");

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,11 @@ struct Checkpoint {
   ContactRows contacts;                                ///< this rank's rows (all rows after read)
   std::vector<Parameter> parameters;                   ///< material and run parameters
   std::vector<std::array<std::uint64_t, 4>> rng_state; ///< every random stream's state
+  /// How near static equilibrium the stored state is (root attributes; NaN: not recorded, as in
+  /// files written before they were): mean |net force| / mean |contact force|, and the kinetic
+  /// energy of the fluctuating motion over the elastic energy of the contacts.
+  double unbalanced_force_ratio = std::numeric_limits<double>::quiet_NaN();
+  double kinetic_elastic_ratio = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Writes a checkpoint atomically (temporary name, flush, rename), collectively on `comm`.

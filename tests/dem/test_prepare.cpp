@@ -2,6 +2,7 @@
 // the cycles stop at the first one that seizes at or below the target void ratio,
 // and the kept cycle is the one nearest the target; stopping early changes nothing
 // in the cycles that did run.
+#include "common/error.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@ DemConfig fast_config(int cycles, double target) {
   config.prepare.consolidation_tolerance = 0.02;
   config.prepare.cycles = cycles;
   config.prepare.target_void_ratio = target;
+  config.prepare.void_ratio_tolerance = 1.0; // these tests are about the cycles, not the target
   return config;
 }
 
@@ -43,6 +45,34 @@ TEST(Prepare, CyclesStopAtTheTargetAndKeepTheNearest) {
   for (std::size_t k = 0; k < 3; ++k)
     EXPECT_EQ(stopped.cycle_void_ratios[k], all.cycle_void_ratios[k]);
   EXPECT_LT(std::abs(stopped.consolidated.mean_stress - 100e3), 0.02 * 100e3);
+}
+
+TEST(Prepare, AnUnreachableTargetFailsNamingTheVoidRatioReached) {
+  DemConfig config = fast_config(2, 0.3); // far below what two cycles of 150 spheres reach
+  config.prepare.void_ratio_tolerance = 0.003;
+  try {
+    (void)prepare(config);
+    FAIL() << "expected a ConvergenceError";
+  } catch (const ConvergenceError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("above the target dem.prepare.target_void_ratio = 0.3000"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("after 2 of at most 2 cycles"), std::string::npos) << message;
+    EXPECT_EQ(error.code(), ExitCode::convergence_failure);
+  }
+}
+
+TEST(Prepare, ReachesTheTargetWithinItsTolerance) {
+  // The paper's protocol reaches a target: the prepared e lies within the tolerance of it and
+  // the assembly is consolidated to p0 in static equilibrium.
+  const PreparedAssembly first = prepare(fast_config(1, 0.0));
+  const double target = first.cycle_void_ratios[0] - 0.01;
+  DemConfig config = fast_config(30, target);
+  config.prepare.void_ratio_tolerance = 0.003;
+  const PreparedAssembly prepared = prepare(config);
+  EXPECT_LT(std::abs(prepared.consolidated.void_ratio - target), 0.003);
+  EXPECT_LT(prepared.consolidated.unbalanced_force_ratio, config.equilibrium.tolerance);
+  EXPECT_GT(prepared.cycle_void_ratios.size(), 1u);
 }
 
 } // namespace

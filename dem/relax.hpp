@@ -1,0 +1,34 @@
+#pragma once
+// Relaxation to static equilibrium (docs/decisions.md, "Quasi-static control"):
+// the strain-controlled axes of the cell stop, the stress-controlled ones keep
+// their servo, and the fluctuating motion is damped globally until the
+// unbalanced-force ratio (dem/equilibrium.hpp) and the servo error are both
+// below their tolerances. Kuhn's OVAL cycles each strain increment the same way
+// until the mean force imbalance is small (shared/reference/ovoid.md).
+
+#include "common/log.hpp"
+#include "dem/config.hpp"
+#include "dem/simulation.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace aniso::dem {
+
+struct Relaxation {
+  std::int64_t steps = 0;
+  Equilibrium equilibrium; ///< at the end
+  double stress_error = 0; ///< |servo error| at the end
+};
+
+/// True when the last control update meets both tolerances.
+bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& config);
+
+/// Relaxes with the cell's strain-rate axes held, global damping `config.damping`, for at most
+/// `max_steps`; then gives back the controller (its targets and servo memory) and the damping
+/// the simulation had, so that loading continues from the relaxed state. Throws
+/// ConvergenceError (exit 5) naming the ratio reached when the tolerances are not met in time.
+Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig& config,
+                                std::int64_t max_steps, const Logger& logger, const std::string& label);
+
+} // namespace aniso::dem

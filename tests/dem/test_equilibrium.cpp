@@ -1,0 +1,171 @@
+// The equilibrium measures (dem/equilibrium.hpp) on hand-made contacts with
+// known net forces, the global damping of the fluctuating motion, the
+// relaxation to equilibrium (dem/relax.hpp) and the fixed-cell hold
+// (dem/hold.hpp) of a small dense assembly.
+#include "common/error.hpp"
+#include "dem/hold.hpp"
+#include "dem/integrator.hpp"
+#include "dem/load.hpp"
+#include "dem/relax.hpp"
+#include "dem/settings.hpp"
+#include "tests/dem/assembly_fixture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace {
+
+using aniso::Vec3;
+using namespace aniso;
+using namespace aniso::dem;
+
+constexpr double radius = 0.1e-3;
+
+/// Spheres of one radius at the given x on the line y = z = L/2 of a 1 mm cubic cell, at rest.
+Simulation spheres_on_a_line(const std::vector<double>& x, double global_damping = 0.0) {
+  DemConfig config = test::small_config(static_cast<std::int64_t>(x.size()));
+  config.integration.global_damping = global_damping;
+  Particles particles;
+  const double length = 1e-3;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    particles.add(k, radius, 1.0, config.particles.splice_angle, config.particles.density,
+                  Vec3(x[k], 0.5 * length, 0.5 * length));
+  }
+  h5::CellState cell;
+  cell.lengths = Vec3::Constant(length);
+  cell.reference_lengths = cell.lengths;
+  SimulationSettings settings = settings_from_config(config, 2 * radius);
+  settings.material.damping_ratio = 0.0;
+  return Simulation(std::move(particles), cell, settings, 0.0, 0, false, mpi::Comm(MPI_COMM_SELF));
+}
+
+TEST(Equilibrium, TwoTouchingSpheresAreWhollyUnbalanced) {
+  // Each sphere feels the one contact force f and nothing else: mean |net| = f = mean |f_c|.
+  const double overlap = 1e-6;
+  const Simulation simulation = spheres_on_a_line({0.4e-3, 0.4e-3 + 2 * radius - overlap});
+  const Equilibrium e = simulation.equilibrium();
+  ASSERT_EQ(e.n_contacts, 1);
+  EXPECT_NEAR(e.unbalanced_force_ratio, 1.0, 1e-12);
+  // Hertz: k_n = 3 F / (2 delta) and the stored energy (2/5) F delta.
+  const ContactRecord& record = simulation.neighbors().records()[0];
+  EXPECT_NEAR(e.mean_normal_stiffness, 1.5 * record.normal_force / overlap, 1e-9 * e.mean_normal_stiffness);
+  EXPECT_NEAR(e.elastic_energy, 0.4 * record.normal_force * overlap, 1e-12 * e.elastic_energy);
+  EXPECT_EQ(e.kinetic_energy, 0.0);
+}
+
+TEST(Equilibrium, ASymmetricChainBalancesItsMiddleSphere) {
+  // Three spheres, two equal contacts: the middle one is balanced, each end one feels f.
+  // Mean |net| over the three loaded spheres is 2f/3, the mean contact force f.
+  const double overlap = 1e-6, step = 2 * radius - overlap;
+  const Simulation simulation = spheres_on_a_line({0.3e-3, 0.3e-3 + step, 0.3e-3 + 2 * step});
+  const Equilibrium e = simulation.equilibrium();
+  ASSERT_EQ(e.n_contacts, 2);
+  EXPECT_NEAR(simulation.particles().force[1].norm(), 0.0, 1e-12 * simulation.particles().force[0].norm());
+  EXPECT_NEAR(e.unbalanced_force_ratio, 2.0 / 3.0, 1e-9);
+}
+
+TEST(Equilibrium, SpheresWithoutContactsHaveNoRatio) {
+  // A loose sphere counts for neither mean: with no contact at all the ratio is undefined.
+  const Simulation apart = spheres_on_a_line({0.2e-3, 0.7e-3});
+  EXPECT_EQ(apart.equilibrium().n_contacts, 0);
+  EXPECT_TRUE(std::isnan(apart.equilibrium().unbalanced_force_ratio));
+  // A third sphere far from a touching pair changes nothing.
+  const double overlap = 1e-6;
+  const Simulation pair_and_one = spheres_on_a_line({0.2e-3, 0.2e-3 + 2 * radius - overlap, 0.75e-3});
+  EXPECT_NEAR(pair_and_one.equilibrium().unbalanced_force_ratio, 1.0, 1e-12);
+}
+
+TEST(Equilibrium, KineticEnergyOfKnownVelocities) {
+  const double overlap = 1e-6;
+  Simulation simulation = spheres_on_a_line({0.3e-3, 0.3e-3 + 2 * radius - overlap, 0.8e-3});
+  Particles& particles = simulation.particles();
+  particles.velocity[2] = Vec3(0.0, 0.3, 0.4); // |v| = 0.5 m/s, far from the others
+  particles.angular_velocity[2] = Vec3(0.0, 0.0, 100.0);
+  simulation.restore_stress(); // measures again
+  const double mass = particles.mass[2], inertia = particles.inertia[2][2];
+  const double expected = 0.5 * mass * 0.25 + 0.5 * inertia * 1e4;
+  EXPECT_NEAR(simulation.equilibrium().kinetic_energy, expected, 1e-12 * expected);
+  EXPECT_NEAR(simulation.equilibrium().kinetic_elastic_ratio(),
+              expected / simulation.equilibrium().elastic_energy, 1e-12 * expected);
+}
+
+TEST(Equilibrium, GlobalDampingDecaysTheFluctuatingMotionAtItsRate) {
+  // Two touching spheres and a free one: the free sphere's speed decays as exp(-gamma t),
+  // gamma = 2 zeta sqrt(k_n / m_mean), and it keeps its direction.
+  const double overlap = 1e-6, zeta = 0.5;
+  Simulation simulation = spheres_on_a_line({0.3e-3, 0.3e-3 + 2 * radius - overlap, 0.8e-3}, zeta);
+  const double k = simulation.equilibrium().mean_normal_stiffness;
+  const double gamma = 2 * zeta * std::sqrt(k / simulation.particles().mass[0]);
+  EXPECT_NEAR(simulation.global_damping_rate(), gamma, 1e-12 * gamma);
+  simulation.particles().velocity[2] = Vec3(0.0, 1e-3, 0.0);
+  const int steps = 7; // fewer than a control interval: the rate stays as it is
+  for (int n = 0; n < steps; ++n)
+    simulation.step();
+  const double expected = 1e-3 * std::exp(-gamma * steps * simulation.settings().time_step);
+  EXPECT_NEAR(simulation.particles().velocity[2].y(), expected, 1e-12);
+  EXPECT_EQ(simulation.particles().velocity[2].x(), 0.0);
+}
+
+/// The prepared 150-sphere assembly of the tests, consolidated in equilibrium.
+const Simulation& prepared() {
+  static const Simulation simulation = test::prepared_assembly(test::small_config(150, 5));
+  return simulation;
+}
+
+TEST(Equilibrium, PreparedAssemblyIsStaticAndHoldsItsStress) {
+  const Simulation& start = prepared();
+  const EquilibriumConfig tolerances;
+  EXPECT_LT(start.equilibrium().unbalanced_force_ratio, tolerances.tolerance);
+  // A static state keeps p at a fixed cell: 20,000 steps change it by less than 0.5 %.
+  std::printf("[ measured ] prepared: force ratio %.3g torque ratio %.3g kinetic/elastic %.3g\n",
+              start.equilibrium().unbalanced_force_ratio, start.equilibrium().unbalanced_torque_ratio,
+              start.equilibrium().kinetic_elastic_ratio());
+  Simulation held = start;
+  const HoldReport report = hold_fixed_cell(held, 20000, make_silent_logger());
+  RecordProperty("largest_drift", std::to_string(report.largest_drift));
+  EXPECT_LT(report.largest_drift, 5e-3);
+  EXPECT_EQ(report.samples.size(), 20000u / 10u + 1u);
+  // The cell did not move.
+  EXPECT_EQ(held.cell().lengths(), start.cell().lengths());
+}
+
+TEST(Equilibrium, RelaxationAfterLoadingMeetsTheTolerancesAndGivesTheControlBack) {
+  DemConfig config = test::small_config(150, 5);
+  Simulation simulation = prepared();
+  start_loading(simulation, config);
+  for (int n = 0; n < 3000; ++n)
+    simulation.step();
+  const h5::CellState loading = simulation.control();
+  const double length_1 = simulation.cell().lengths()[0];
+  const Relaxation relaxed =
+      relax_to_equilibrium(simulation, config.equilibrium, 500000, make_silent_logger(), "test");
+  EXPECT_LT(relaxed.equilibrium.unbalanced_force_ratio, config.equilibrium.tolerance);
+  EXPECT_LT(relaxed.stress_error, config.equilibrium.stress_tolerance);
+  EXPECT_EQ(simulation.cell().lengths()[0], length_1); // axis 1 held while relaxing
+  EXPECT_EQ(simulation.control().target, loading.target);
+  EXPECT_EQ(simulation.control().strain_rate[0], loading.strain_rate[0]);
+  EXPECT_EQ(simulation.settings().global_damping, config.integration.global_damping);
+}
+
+TEST(Equilibrium, RelaxationThatRunsOutOfStepsNamesTheRatioReached) {
+  DemConfig config = test::small_config(150, 5);
+  Simulation simulation = prepared();
+  start_loading(simulation, config);
+  for (int n = 0; n < 3000; ++n)
+    simulation.step();
+  try {
+    (void)relax_to_equilibrium(simulation, config.equilibrium, 20, make_silent_logger(), "test relaxation");
+    FAIL() << "expected a ConvergenceError";
+  } catch (const ConvergenceError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("test relaxation: not in equilibrium after 20 steps"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("unbalanced-force ratio"), std::string::npos) << message;
+    EXPECT_EQ(error.code(), ExitCode::convergence_failure);
+  }
+}
+
+} // namespace
