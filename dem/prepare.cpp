@@ -224,12 +224,12 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger,
                pr.target_void_ratio);
   Simulation chosen = std::move(*best);
   chosen.set_friction(config.material.friction);
-  chosen.set_damping(config.prepare.damping);
+  // Consolidated with the damping that loading will use, so that the relaxation proves the
+  // state static with it (a state verified with heavier damping can creep without it).
+  chosen.set_damping(config.integration.damping);
   chosen.set_servo_max_rate(rate);
-  // The relaxation proves the state static with the damping that loading will use.
   chosen.set_global_damping(config.integration.global_damping);
   const Relaxation consolidation = consolidate(chosen, config, rate, logger);
-  chosen.set_damping(config.integration.damping);
   result.consolidated = chosen.measure();
   logger->info("consolidation took {} steps; unbalanced-force ratio {:.2e}, kinetic/elastic {:.2e}",
                consolidation.steps, consolidation.equilibrium.unbalanced_force_ratio,

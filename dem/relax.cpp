@@ -10,7 +10,8 @@ namespace aniso::dem {
 
 bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& config) {
   // NaN (no contacts at all) never counts as static.
-  return simulation.equilibrium().unbalanced_force_ratio < config.tolerance &&
+  const Equilibrium& e = simulation.equilibrium();
+  return e.unbalanced_force_ratio < config.tolerance && e.unbalanced_torque_ratio < config.tolerance &&
          std::abs(simulation.servo_error()) < config.stress_tolerance;
 }
 

@@ -21,7 +21,8 @@ struct Relaxation {
   double stress_error = 0; ///< |servo error| at the end
 };
 
-/// True when the last control update meets both tolerances.
+/// True when the last control update meets the tolerances: force and torque ratios below
+/// config.tolerance, |servo error| below config.stress_tolerance.
 bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& config);
 
 /// Relaxes with the cell's strain-rate axes held, global damping `config.damping`, for at most

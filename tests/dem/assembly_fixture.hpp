@@ -75,6 +75,7 @@ inline void compact_until(Simulation& simulation, double rate, double pressure, 
 inline Simulation prepared_assembly(const DemConfig& config) {
   DemConfig one_cycle = config;
   one_cycle.prepare.cycles = 1;
+  one_cycle.prepare.void_ratio_tolerance = 1.0; // one fast cycle: any density will do
   PreparedAssembly prepared = prepare_assembly(one_cycle, make_silent_logger(), mpi::Comm(MPI_COMM_SELF));
   return std::move(*prepared.simulation);
 }

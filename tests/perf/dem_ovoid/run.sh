@@ -22,7 +22,7 @@ for alpha in 1.0 0.5; do
   if [[ ! -f $out/prepared.h5 ]]; then
     echo "preparing $count particles of aspect ratio $alpha in $out (once)" >&2
     "$build/dem/aniso-dem" prepare --set dem.particles.count="$count" --set dem.particles.aspect_ratio="$alpha" \
-      --set dem.prepare.cycles=1 --set dem.prepare.inertial_number=0.05 \
+      --set dem.prepare.cycles=1 --set dem.prepare.inertial_number=0.05 --set dem.prepare.void_ratio_tolerance=1 \
       --set dem.prepare.initial_solid_fraction=0.35 --set dem.output_dir="$out" --log-level warn
   fi
 done

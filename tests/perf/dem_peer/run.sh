@@ -4,7 +4,7 @@
 #
 # usage: run.sh CHECKPOINT.h5 [STEPS=3000] [REPEATS=5] [WORKDIR=/tmp/aniso-dem-peer]
 #   CHECKPOINT.h5: a prepared aniso checkpoint, e.g. from
-#     aniso-dem prepare --set dem.particles.count=6400 --set dem.prepare.cycles=1 \
+#     aniso-dem prepare --set dem.particles.count=6400 --set dem.prepare.cycles=1 --set dem.prepare.void_ratio_tolerance=1 \
 #                       --set dem.output_dir=DIR           (-> DIR/prepared.h5)
 # environment:
 #   ANISO_BUILD   aniso build folder (default /work/build); bench_dem_steps must be built
