@@ -160,6 +160,12 @@ DemConfig read_dem_config(config::Reader& reader) {
   e.at_checkpoints =
       reader.boolean("dem.equilibrium.at_checkpoints", e.at_checkpoints,
                      "relax to equilibrium (cell held, p servoed) before each load checkpoint");
+  l.increment = reader.real("dem.load.increment", l.increment, units::none, Range::closed(0.0, 0.1),
+                            "strain per loading increment, each followed by a relaxation to "
+                            "increment_tolerance (Kuhn's OVAL practice); 0: continuous loading");
+  l.increment_tolerance =
+      reader.real("dem.load.increment_tolerance", l.increment_tolerance, units::none, Range::open(0.0, 1.0),
+                  "unbalanced-force ratio that ends the relaxation after each increment (OVAL: 0.01)");
   return c;
 }
 

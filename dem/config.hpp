@@ -68,6 +68,8 @@ struct LoadConfig {
   double mean_stress = 100e3;             ///< p held constant [Pa]
   std::vector<double> checkpoint_strains; ///< compressive strains at which to write checkpoints
   double history_interval = 1e-4;         ///< strain between history rows
+  double increment = 0;                   ///< strain per increment, each followed by a relaxation (0: none)
+  double increment_tolerance = 1e-2;      ///< unbalanced-force ratio that ends an increment's relaxation
 };
 
 /// Static equilibrium: of the prepared assembly, of every load checkpoint, of `hold`.

@@ -16,6 +16,11 @@ namespace {
 
 using h5::AxisMode;
 
+// The first multiple of `step` above `strain`.
+double next_multiple(double strain, double step) {
+  return (std::floor(strain / step) + 1) * step;
+}
+
 double compressive_strain(const Simulation& simulation) {
   return -simulation.cell().engineering_strain()[0];
 }
@@ -97,6 +102,13 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
   const std::int64_t start_step = simulation.step_count();
   double next_history =
       (std::floor(compressive_strain(simulation) / load.history_interval) + 1) * load.history_interval;
+  // Increments end at multiples of load.increment, found from the strain alone, so that a
+  // resumed run triggers them where the uninterrupted one did.
+  double next_increment =
+      load.increment > 0 ? next_multiple(compressive_strain(simulation), load.increment) : 0;
+  EquilibriumConfig increment_tolerances = config.equilibrium;
+  increment_tolerances.tolerance = load.increment_tolerance;
+  increment_tolerances.verify_steps = 0;
   std::size_t next_checkpoint = 0;
   while (next_checkpoint < load.checkpoint_strains.size() &&
          load.checkpoint_strains[next_checkpoint] <= compressive_strain(simulation)) {
@@ -113,6 +125,15 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
     simulation.step();
     strain = compressive_strain(simulation);
     progress.update(strain);
+    if (load.increment > 0 && strain >= next_increment) {
+      // OVAL's loading: each strain increment is followed by a relaxation to a small force
+      // imbalance, so the path is a sequence of near-static states (docs/methods/dem.md).
+      summary.relaxation_steps +=
+          relax_to_equilibrium(simulation, increment_tolerances, config.equilibrium.max_steps, logger,
+                               fmt::format("relaxation after the increment to strain {:.5g}", strain))
+              .steps;
+      next_increment = next_multiple(strain, load.increment);
+    }
     if (strain >= next_history || strain >= load.final_strain) {
       history.append(history_row(simulation, config));
       while (next_history <= strain)

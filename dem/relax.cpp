@@ -28,12 +28,17 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   simulation.set_control(held);
   const std::int64_t interval = simulation.settings().control_interval;
   const std::int64_t start = simulation.step_count();
+  int left_equilibrium = 0; // verification windows that the state did not stay balanced through
   const auto fail = [&] {
     throw ConvergenceError(fmt::format(
         "{}: not in equilibrium after {} steps (dem.equilibrium.max_steps): unbalanced-force ratio "
-        "{:.3g} (tolerance {:.3g}), stress error {:.3g} (tolerance {:.3g})",
-        label, max_steps, simulation.equilibrium().unbalanced_force_ratio, config.tolerance,
-        std::abs(simulation.servo_error()), config.stress_tolerance));
+        "{:.3g}, torque ratio {:.3g} (tolerance {:.3g}), stress error {:.3g} (tolerance {:.3g}); the state "
+        "left equilibrium within dem.equilibrium.verify_steps = {} steps {} times. Raise "
+        "dem.equilibrium.max_steps or dem.equilibrium.tolerance (assemblies of a few hundred particles "
+        "creep near 1e-4)",
+        label, max_steps, simulation.equilibrium().unbalanced_force_ratio,
+        simulation.equilibrium().unbalanced_torque_ratio, config.tolerance,
+        std::abs(simulation.servo_error()), config.stress_tolerance, config.verify_steps, left_equilibrium));
   };
   // Steps until the next control update, failing once the budget is spent.
   const auto advance_to_update = [&] {
@@ -66,6 +71,7 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
       stable = in_equilibrium(simulation, config);
     }
     if (stable) break;
+    ++left_equilibrium;
   }
   Relaxation result;
   result.steps = simulation.step_count() - start;

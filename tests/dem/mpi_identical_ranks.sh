@@ -17,6 +17,7 @@ export OMPI_MCA_mpi_yield_when_idle=1
 # Two compaction cycles (the second restarts from the first) at a fast rate from a dense start.
 settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycles=2
           --set dem.prepare.void_ratio_tolerance=1
+          --set dem.equilibrium.tolerance=1e-3 --set dem.equilibrium.verify_steps=2000
           --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
           --set dem.load.final_strain=0.002 --set 'dem.load.checkpoint_strains=[0.001, 0.002]'
           --set dem.load.history_interval=2e-4 --log-level warn "$@")

@@ -159,6 +159,15 @@ TEST(Restart, ContinuesBitForBitAtEverySplitPoint) {
   expect_bit_for_bit_restarts(make_case(1.0, 150));
 }
 
+// The global damping's rate is set at control updates and stored in the checkpoint, so a
+// restart between two updates must take it from there to continue bit for bit.
+TEST(Restart, GlobalDampingContinuesBitForBitAtEverySplitPoint) {
+  RestartCase test_case = make_case(1.0, 150);
+  test_case.base.set_global_damping(0.3);
+  ASSERT_GT(test_case.base.global_damping_rate(), 0.0);
+  expect_bit_for_bit_restarts(test_case);
+}
+
 // Ovoids carry their last contact normal in the contact history (the narrow phase starts
 // from it), so a restart must restore it to continue bit for bit.
 TEST(Restart, OvoidsContinueBitForBitAtEverySplitPoint) {
