@@ -218,8 +218,9 @@ TEST(Equilibrium, IncrementalLoadingRelaxesEveryIncrementAndResumesBitForBit) {
   // Every row after an increment's relaxation (strain a multiple of 5e-4) is near balance.
   for (std::size_t r = 1; r < ratios.size(); ++r) {
     const double increments = -strains[r] / config.load.increment;
-    if (std::abs(increments - std::round(increments)) < 1e-3 && -strains[r] > 0)
+    if (std::abs(increments - std::round(increments)) < 1e-3 && -strains[r] > 0) {
       EXPECT_LT(ratios[r], config.load.increment_tolerance) << "row " << r;
+    }
   }
   const std::vector<double> p_straight = History::read(output).column("p");
   const h5::Checkpoint checkpoint = h5::read_checkpoint(first.checkpoints[0], self);
