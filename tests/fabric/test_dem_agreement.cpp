@@ -59,6 +59,10 @@ TEST(FabricDem, ContactStressOfLoadCheckpointsEqualsTheRecordedHistory) {
   config.load.final_strain = 4e-4;
   config.load.history_interval = 1e-4;
   config.load.checkpoint_strains = {2e-4, 4e-4};
+  // This 150-sphere assembly creeps near a force ratio of 1e-4; the test is about the stress
+  // sums, so a looser static state keeps it short.
+  config.equilibrium.tolerance = 1e-3;
+  config.equilibrium.verify_steps = 2000;
   dem::Simulation simulation = dem::test::prepared_assembly(config);
   dem::start_loading(simulation, config);
   const dem::test::TemporaryFolder folder("fabric_dem_history");
