@@ -74,12 +74,12 @@ struct LoadConfig {
 
 /// Static equilibrium: of the prepared assembly, of every load checkpoint, of `hold`.
 struct EquilibriumConfig {
-  double tolerance = 1e-4;          ///< unbalanced-force ratio at which a state counts as static
-  double stress_tolerance = 1e-3;   ///< |p - p_target| / p_target at the same time
-  double damping = 0.1;             ///< global damping ratio while relaxing
-  std::int64_t verify_steps = 5000; ///< the tolerances must then hold this long without extra damping
-  std::int64_t max_steps = 500000;  ///< a relaxation that needs more stops with exit 5
-  bool at_checkpoints = true;       ///< relax before writing each load checkpoint
+  double tolerance = 1e-4;           ///< unbalanced-force ratio at which a state counts as static
+  double stress_tolerance = 1e-3;    ///< |p - p_target| / p_target at the same time
+  double damping = 0.1;              ///< global damping ratio while relaxing
+  std::int64_t verify_steps = 10000; ///< the tolerances must then hold this long without extra damping
+  std::int64_t max_steps = 500000;   ///< a relaxation that needs more stops with exit 5
+  bool at_checkpoints = true;        ///< relax before writing each load checkpoint
 };
 
 struct DemConfig {
