@@ -3,8 +3,9 @@
 // the strain-controlled axes of the cell stop, the stress-controlled ones keep
 // their servo, and the fluctuating motion is damped globally until the
 // unbalanced-force ratio (dem/equilibrium.hpp) and the servo error are both
-// below their tolerances. Kuhn's OVAL cycles each strain increment the same way
-// until the mean force imbalance is small (shared/reference/ovoid.md).
+// below their tolerances; then, with every axis of the cell fixed and the run's
+// own damping, the state must stay balanced and keep p for verify_steps. Kuhn's OVAL cycles each strain
+// increment the same way until the mean force imbalance is small (shared/reference/ovoid.md).
 
 #include "common/log.hpp"
 #include "dem/config.hpp"
