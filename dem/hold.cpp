@@ -34,6 +34,7 @@ HoldReport hold_fixed_cell(Simulation& simulation, std::int64_t steps, const Log
   fixed.target = Vec3::Zero();
   fixed.hold_mean_stress = false;
   fixed.servo_state = Vec3::Zero();
+  simulation.watch_equilibrium(true);
   simulation.set_control(fixed);
   HoldReport report;
   report.samples.push_back(sample(simulation));

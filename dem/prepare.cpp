@@ -188,6 +188,7 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger,
   const auto& pc = config.particles;
   const auto& pr = config.prepare;
   Simulation simulation = sparse_assembly(config, sizes, placement, comm);
+  simulation.watch_equilibrium(true); // the seize test reads it at every control update
   const double rate =
       strain_rate_for_inertial_number(pr.inertial_number, pc.d50, pc.density, pr.confining_pressure);
   logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction rate "
@@ -230,6 +231,7 @@ PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger,
   chosen.set_servo_max_rate(rate);
   chosen.set_global_damping(config.integration.global_damping);
   const Relaxation consolidation = consolidate(chosen, config, rate, logger);
+  chosen.watch_equilibrium(false);
   result.consolidated = chosen.measure();
   logger->info("consolidation took {} steps; unbalanced-force ratio {:.2e}, kinetic/elastic {:.2e}",
                consolidation.steps, consolidation.equilibrium.unbalanced_force_ratio,

@@ -20,6 +20,8 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
                                 std::int64_t max_steps, const Logger& logger, const std::string& label) {
   const h5::CellState loading = simulation.control();
   const double loading_damping = simulation.settings().global_damping;
+  const bool watched = simulation.watching_equilibrium();
+  simulation.watch_equilibrium(true);
   h5::CellState held = loading;
   for (int a = 0; a < 3; ++a) {
     if (held.mode[static_cast<std::size_t>(a)] == h5::AxisMode::strain_rate) held.target[a] = 0.0;
@@ -93,6 +95,7 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   result.stress_error = std::abs(servo_error(loading, simulation.stress()));
   simulation.set_control(loading);
   simulation.set_global_damping(loading_damping);
+  simulation.watch_equilibrium(watched);
   return result;
 }
 

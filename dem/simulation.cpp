@@ -84,7 +84,7 @@ void Simulation::update_control() {
   if (!std::isfinite(stress_.sum())) {
     throw NumericalError(fmt::format("step {}: the stress is not finite: the run exploded", step_));
   }
-  update_equilibrium();
+  if (watch_equilibrium_ || settings_.global_damping > 0) update_equilibrium();
   const double interval = static_cast<double>(settings_.control_interval) * settings_.time_step;
   update_strain_rates(control_, stress_, axial_stiffness(neighbors_, particles_, cell_.volume(), comm()),
                       interval, settings_.servo);
@@ -93,6 +93,11 @@ void Simulation::update_control() {
 void Simulation::update_equilibrium() {
   equilibrium_ = measure_equilibrium(particles_, neighbors_, comm());
   update_damping_rate();
+}
+
+void Simulation::watch_equilibrium(bool on) {
+  watch_equilibrium_ = on;
+  if (on) update_equilibrium();
 }
 
 void Simulation::set_global_damping(double ratio) {

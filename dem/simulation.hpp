@@ -81,8 +81,14 @@ public:
   [[nodiscard]] double global_damping_rate() const { return damping_rate_; }
   /// Restores the damping rate of a checkpoint (exact restarts).
   void restore_global_damping_rate(double rate) { damping_rate_ = rate; }
-  /// Equilibrium measures at the last control update (or restore_stress()).
+  /// Equilibrium measures at the last control update that measured them: every update while
+  /// watched or while the global damping is on (its rate needs them), else only at
+  /// construction, restore_stress() and watch_equilibrium(true). They cost about 9% of a
+  /// loading step when measured at every update, so loading does without them.
   [[nodiscard]] const Equilibrium& equilibrium() const { return equilibrium_; }
+  /// Measures the equilibrium at every control update from now on (and now, collectively), or not.
+  void watch_equilibrium(bool on);
+  [[nodiscard]] bool watching_equilibrium() const { return watch_equilibrium_; }
   /// Makes the current lengths the zero-strain reference.
   void reset_reference_lengths() { cell_ = PeriodicCell(cell_.lengths()); }
   /// Caps the servo's strain rate [1/s].
@@ -124,6 +130,7 @@ private:
   double mean_mass_ = 0;    ///< over all particles [kg]
   double damping_rate_ = 0; ///< gamma of the global damping [1/s]
   Equilibrium equilibrium_;
+  bool watch_equilibrium_ = false;
 };
 
 } // namespace aniso::dem
