@@ -102,7 +102,11 @@ void Simulation::watch_equilibrium(bool on) {
 
 void Simulation::set_global_damping(double ratio) {
   settings_.global_damping = ratio;
-  update_damping_rate();
+  if (ratio > 0) {
+    update_equilibrium(); // the rate needs the present contact stiffness, not a stale one
+  } else {
+    update_damping_rate();
+  }
 }
 
 void Simulation::update_damping_rate() {

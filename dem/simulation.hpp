@@ -75,7 +75,7 @@ public:
   void set_friction(double friction) { settings_.material.friction = friction; }
   /// Changes the contact damping ratio.
   void set_damping(double ratio) { settings_.material.damping_ratio = ratio; }
-  /// Changes the global damping ratio, and its rate from the last equilibrium measure.
+  /// Changes the global damping ratio and sets its rate from the present contacts (collective).
   void set_global_damping(double ratio);
   /// Rate gamma of the global damping [1/s], set at every control update.
   [[nodiscard]] double global_damping_rate() const { return damping_rate_; }
