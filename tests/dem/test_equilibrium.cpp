@@ -135,12 +135,18 @@ TEST(Equilibrium, PreparedAssemblyIsStaticAndHoldsItsStress) {
   EXPECT_EQ(held.cell().lengths(), start.cell().lengths());
 }
 
-TEST(Equilibrium, RelaxationAfterLoadingMeetsTheTolerancesAndGivesTheControlBack) {
-  DemConfig config = test::small_config(150, 5);
+/// The prepared assembly after 3000 steps of biaxial loading: moving, out of balance.
+Simulation loaded_for_3000_steps(const DemConfig& config) {
   Simulation simulation = prepared();
   start_loading(simulation, config);
   for (int n = 0; n < 3000; ++n)
     simulation.step();
+  return simulation;
+}
+
+TEST(Equilibrium, RelaxationAfterLoadingMeetsTheTolerancesAndGivesTheControlBack) {
+  const DemConfig config = test::small_config(150, 5);
+  Simulation simulation = loaded_for_3000_steps(config);
   const h5::CellState loading = simulation.control();
   const double length_1 = simulation.cell().lengths()[0];
   const Relaxation relaxed =
@@ -154,11 +160,8 @@ TEST(Equilibrium, RelaxationAfterLoadingMeetsTheTolerancesAndGivesTheControlBack
 }
 
 TEST(Equilibrium, RelaxationThatRunsOutOfStepsNamesTheRatioReached) {
-  DemConfig config = test::small_config(150, 5);
-  Simulation simulation = prepared();
-  start_loading(simulation, config);
-  for (int n = 0; n < 3000; ++n)
-    simulation.step();
+  const DemConfig config = test::small_config(150, 5);
+  Simulation simulation = loaded_for_3000_steps(config);
   try {
     (void)relax_to_equilibrium(simulation, config.equilibrium, 20, make_silent_logger(), "test relaxation");
     FAIL() << "expected a ConvergenceError";
