@@ -149,14 +149,16 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
         summary.relaxation_steps += relaxed.steps;
         history.append(history_row(simulation, config)); // the relaxed state, at the same strain
       }
-      h5::write_checkpoint(path, to_checkpoint(simulation, config.particles.d50, {}), provenance,
-                           simulation.comm());
+      // The log reports the ratios measured for the file: simulation.equilibrium() is stale
+      // when equilibrium is not watched (no relaxation at checkpoints).
+      const h5::Checkpoint checkpoint = to_checkpoint(simulation, config.particles.d50, {});
+      h5::write_checkpoint(path, checkpoint, provenance, simulation.comm());
       if (simulation.comm().is_root()) history.write(output_dir, provenance);
       logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
                    "ratio {:.2e}, kinetic/elastic {:.2e})",
                    next_checkpoint, strain, path, mean_stress_compression_positive(simulation.stress()),
-                   simulation.servo_error(), simulation.equilibrium().unbalanced_force_ratio,
-                   simulation.equilibrium().kinetic_elastic_ratio());
+                   simulation.servo_error(), checkpoint.unbalanced_force_ratio,
+                   checkpoint.kinetic_elastic_ratio);
       summary.checkpoints.push_back(path);
       ++next_checkpoint;
     }
