@@ -1,13 +1,16 @@
 #include "dem/load.hpp"
 
+#include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "dem/history.hpp"
 #include "dem/io.hpp"
+#include "dem/measures.hpp"
 #include "dem/relax.hpp"
 #include "dem/settings.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -63,6 +66,45 @@ std::vector<double> history_row(const Simulation& simulation, const DemConfig& c
           m.unbalanced_force_ratio};
 }
 
+// A resumed run continues the loading stored in its checkpoint; a configured setting that
+// start_loading() would apply differently would be silently ignored, so it is refused.
+void require_resume_matches(const Simulation& simulation, const DemConfig& config) {
+  const auto& pc = config.particles;
+  const double rate = strain_rate_for_inertial_number(config.load.inertial_number, pc.d50, pc.density,
+                                                      config.load.mean_stress);
+  const double stored_rate = -simulation.control().target[0];
+  const auto differs = [](double configured, double stored) {
+    return std::abs(configured - stored) > 1e-9 * std::max(std::abs(configured), std::abs(stored));
+  };
+  std::string mismatches;
+  const auto check = [&](const char* key, double configured, double stored, double shown_configured,
+                         const std::string& shown_stored) {
+    if (differs(configured, stored))
+      mismatches += fmt::format("\n  {} = {:.6g}, the checkpoint's loading has {}", key, shown_configured,
+                                shown_stored);
+  };
+  check("dem.load.inertial_number", rate, stored_rate, config.load.inertial_number,
+        fmt::format("{:.6g} (strain rate {:.6g} /s)",
+                    inertial_number(stored_rate, pc.d50, pc.density, config.load.mean_stress), stored_rate));
+  const double stored_p = simulation.control().mean_stress_target;
+  check("dem.load.mean_stress", config.load.mean_stress, stored_p, config.load.mean_stress,
+        fmt::format("{:.6g} Pa", stored_p));
+  const auto& material = simulation.settings().material;
+  const double stored_global = simulation.settings().global_damping;
+  check("dem.material.friction", config.material.friction, material.friction, config.material.friction,
+        fmt::format("{:.6g}", material.friction));
+  check("dem.integration.damping", config.integration.damping, material.damping_ratio,
+        config.integration.damping, fmt::format("{:.6g}", material.damping_ratio));
+  check("dem.integration.global_damping", config.integration.global_damping, stored_global,
+        config.integration.global_damping, fmt::format("{:.6g}", stored_global));
+  require_input(mismatches.empty(),
+                fmt::format("load --resume: the configuration differs from the loading it would continue "
+                            "(a resumed run keeps the stored settings, so these would be ignored):{}\n"
+                            "Resume with the original settings, or start a new loading from the checkpoint "
+                            "without --resume.",
+                            mismatches));
+}
+
 } // namespace
 
 std::string load_checkpoint_path(const std::string& folder, std::size_t index) {
@@ -93,6 +135,7 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
   const auto start_wall = std::chrono::steady_clock::now();
   History history;
   if (resuming) {
+    require_resume_matches(simulation, config);
     history = History::read(output_dir);
     history.truncate_after_step(static_cast<double>(simulation.step_count()));
   } else {

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Two checks of `aniso-dem load` through the executable, on one small run:
+# 1. A load whose checkpoints are not relaxed (equilibrium.at_checkpoints = false) logs,
+#    at each checkpoint, the unbalanced-force ratio stored in that file (the log once printed
+#    the last relaxation's ratio instead: a stale 8.75e-5 beside a state at 3.8e-2).
+# 2. `load --resume` with a loading setting that differs from the checkpoint's (which the
+#    resumed run would silently ignore) stops with exit 2 naming the key, and leaves the
+#    files already written untouched.
+#
+# usage: load_cli_checks.sh BUILD_DIR WORK_DIR
+set -euo pipefail
+build=$1 work=$2
+rm -rf "$work"
+mkdir -p "$work"
+settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycles=1
+          --set dem.prepare.void_ratio_tolerance=1
+          --set dem.equilibrium.tolerance=1e-3 --set dem.equilibrium.verify_steps=2000
+          --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
+          --set dem.load.final_strain=0.002 --set 'dem.load.checkpoint_strains=[0.001, 0.002]'
+          --set dem.load.history_interval=2e-4 --set dem.output_dir="$work")
+"$build/dem/aniso-dem" prepare "${settings[@]}" --log-level warn
+"$build/dem/aniso-dem" load "${settings[@]}" --set dem.equilibrium.at_checkpoints=false \
+  --input "$work/prepared.h5" > "$work/load.log" 2>&1
+
+# The stored attribute, printed as the log prints it (%.2e).
+stored_ratio() {
+  h5dump -a /unbalanced_force_ratio "$1" | awk '/\(0\):/ { printf "%.2e\n", $2 }'
+}
+status=0
+prepared=$(stored_ratio "$work/prepared.h5")
+for index in 000 001; do
+  file="$work/load_$index.h5"
+  logged=$(grep "checkpoint .*load_$index.h5" "$work/load.log" |
+           sed -n 's/.*unbalanced-force ratio \([^,]*\),.*/\1/p')
+  stored=$(stored_ratio "$file")
+  if [ -z "$logged" ] || [ -z "$stored" ]; then
+    echo "FAIL: load_$index.h5: logged ratio '$logged', stored '$stored'"; status=1
+  elif [ "$logged" != "$stored" ]; then
+    echo "FAIL: load_$index.h5: the log says $logged, the file stores $stored"; status=1
+  elif [ "$logged" = "$prepared" ]; then
+    echo "FAIL: load_$index.h5: ratio $logged equals the prepared state's: the check cannot tell stale from fresh"
+    status=1
+  else
+    echo "load_$index.h5: logged $logged = stored $stored (prepared state: $prepared)"
+  fi
+done
+
+# 2. Resume from checkpoint 0 at another rate: refused, nothing rewritten.
+before=$(cd "$work" && md5sum load_001.h5 history.h5)
+set +e
+"$build/dem/aniso-dem" load "${settings[@]}" --set dem.equilibrium.at_checkpoints=false \
+  --set dem.load.inertial_number=1e-4 --input "$work/load_000.h5" --resume > "$work/resume.log" 2>&1
+code=$?
+set -e
+after=$(cd "$work" && md5sum load_001.h5 history.h5)
+if [ $code != 2 ]; then
+  echo "FAIL: resume at another rate exited $code, expected 2:"; tail -3 "$work/resume.log"; status=1
+elif ! grep -q "dem.load.inertial_number = 0.0001, the checkpoint's loading has 0.001" "$work/resume.log"; then
+  echo "FAIL: the refusal does not name the rate:"; tail -3 "$work/resume.log"; status=1
+elif [ "$before" != "$after" ]; then
+  echo "FAIL: the refused resume changed files already written"; status=1
+else
+  echo "resume at another rate: exit 2, rate named, files untouched"
+fi
+exit $status
