@@ -66,6 +66,13 @@ std::vector<double> history_row(const Simulation& simulation, const DemConfig& c
           m.unbalanced_force_ratio};
 }
 
+// The loading's time step: dem.integration.time_step, or its fraction of the critical step.
+double configured_time_step(const Simulation& simulation, const DemConfig& config) {
+  return config.integration.time_step > 0
+             ? config.integration.time_step
+             : config.integration.time_step_fraction * simulation.critical_time_step();
+}
+
 // A resumed run continues the loading stored in its checkpoint; a configured setting that
 // start_loading() would apply differently would be silently ignored, so it is refused.
 void require_resume_matches(const Simulation& simulation, const DemConfig& config) {
@@ -97,6 +104,20 @@ void require_resume_matches(const Simulation& simulation, const DemConfig& confi
         config.integration.damping, fmt::format("{:.6g}", material.damping_ratio));
   check("dem.integration.global_damping", config.integration.global_damping, stored_global,
         config.integration.global_damping, fmt::format("{:.6g}", stored_global));
+  check("dem.integration.control_interval", static_cast<double>(config.integration.control_interval),
+        static_cast<double>(simulation.settings().control_interval),
+        static_cast<double>(config.integration.control_interval),
+        fmt::format("{}", simulation.settings().control_interval));
+  check("dem.integration.servo_gain", config.integration.servo_gain, simulation.settings().servo.gain,
+        config.integration.servo_gain, fmt::format("{:.6g}", simulation.settings().servo.gain));
+  const double time_step = configured_time_step(simulation, config);
+  const double stored_step = simulation.settings().time_step;
+  check(config.integration.time_step > 0 ? "dem.integration.time_step" : "dem.integration.time_step_fraction",
+        time_step, stored_step,
+        config.integration.time_step > 0 ? config.integration.time_step
+                                         : config.integration.time_step_fraction,
+        fmt::format("a time step of {:.6g} s ({:.6g} of critical)", stored_step,
+                    stored_step / simulation.critical_time_step()));
   require_input(mismatches.empty(),
                 fmt::format("load --resume: the configuration differs from the loading it would continue "
                             "(a resumed run keeps the stored settings, so these would be ignored):{}\n"
@@ -116,6 +137,8 @@ void start_loading(Simulation& simulation, const DemConfig& config) {
   const double rate = strain_rate_for_inertial_number(config.load.inertial_number, pc.d50, pc.density,
                                                       config.load.mean_stress);
   simulation.reset_reference_lengths();
+  simulation.set_time_step(configured_time_step(simulation, config));
+  simulation.set_control_interval(config.integration.control_interval, config.integration.servo_gain);
   simulation.set_friction(config.material.friction);
   simulation.set_damping(config.integration.damping);
   simulation.set_global_damping(config.integration.global_damping);

@@ -21,7 +21,7 @@ Simulation::Simulation(Particles particles, const h5::CellState& control, const 
       neighbors_(settings.skin), domain_(comm), time_(time), step_(step) {
   // Every rank holds every particle here, so these are global without communication.
   require_stable_time_step(settings_.time_step,
-                           critical_time_step(particles_, settings_.density, settings_.material));
+                           dem::critical_time_step(particles_, settings_.density, settings_.material));
   n_particles_ = static_cast<std::int64_t>(particles_.size());
   ExactSum solid, mass;
   for (std::size_t k = 0; k < particles_.size(); ++k) {
@@ -98,6 +98,15 @@ void Simulation::update_equilibrium() {
 void Simulation::watch_equilibrium(bool on) {
   watch_equilibrium_ = on;
   if (on) update_equilibrium();
+}
+
+double Simulation::critical_time_step() const {
+  return comm().min(dem::critical_time_step(particles_, settings_.density, settings_.material));
+}
+
+void Simulation::set_time_step(double time_step) {
+  require_stable_time_step(time_step, critical_time_step());
+  settings_.time_step = time_step;
 }
 
 void Simulation::set_global_damping(double ratio) {

@@ -75,6 +75,10 @@ public:
   void set_friction(double friction) { settings_.material.friction = friction; }
   /// Changes the contact damping ratio.
   void set_damping(double ratio) { settings_.material.damping_ratio = ratio; }
+  /// Rayleigh critical time step of the smallest particle on any rank (collective).
+  [[nodiscard]] double critical_time_step() const;
+  /// Changes the time step from the next step on; refused above the critical step (collective).
+  void set_time_step(double time_step);
   /// Changes the global damping ratio and sets its rate from the present contacts (collective).
   void set_global_damping(double ratio);
   /// Rate gamma of the global damping [1/s], set at every control update.
@@ -93,6 +97,11 @@ public:
   void reset_reference_lengths() { cell_ = PeriodicCell(cell_.lengths()); }
   /// Caps the servo's strain rate [1/s].
   void set_servo_max_rate(double rate) { settings_.servo.max_rate = rate; }
+  /// Changes the steps between stress measurements and servo updates, and the servo gain.
+  void set_control_interval(std::int64_t steps, double servo_gain) {
+    settings_.control_interval = steps;
+    settings_.servo.gain = servo_gain;
+  }
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] std::int64_t step_count() const { return step_; }
   [[nodiscard]] double solid_volume() const { return solid_volume_; }
