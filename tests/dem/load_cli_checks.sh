@@ -6,6 +6,7 @@
 # 2. `load --resume` with a loading setting that differs from the checkpoint's (which the
 #    resumed run would silently ignore) stops with exit 2 naming the key, and leaves the
 #    files already written untouched.
+# 3. A fresh load applies the configured time step (it once kept the prepared file's).
 #
 # usage: load_cli_checks.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -61,5 +62,17 @@ elif [ "$before" != "$after" ]; then
   echo "FAIL: the refused resume changed files already written"; status=1
 else
   echo "resume at another rate: exit 2, rate named, files untouched"
+fi
+
+# 3. A fresh load at 0.4 of the Rayleigh step runs at twice the prepared step (0.2).
+"$build/dem/aniso-dem" load "${settings[@]}" --set dem.equilibrium.at_checkpoints=false \
+  --set dem.output_dir="$work/step" --set dem.integration.time_step_fraction=0.4 \
+  --set dem.integration.control_interval=5 --input "$work/prepared.h5" --log-level warn
+step_of() { h5dump -a /time_step "$1" | awk '/\(0\):/ { print $2 }'; }
+ratio=$(awk -v a="$(step_of "$work/step/load_000.h5")" -v b="$(step_of "$work/prepared.h5")" 'BEGIN { print a / b }')
+if awk -v r="$ratio" 'BEGIN { exit !(r > 1.9999 && r < 2.0001) }'; then
+  echo "fresh load at 0.4 t_R: time step ratio $ratio to the prepared 0.2 t_R"
+else
+  echo "FAIL: fresh load at 0.4 t_R ran at $ratio times the prepared step, expected 2"; status=1
 fi
 exit $status
