@@ -36,14 +36,16 @@ struct MaterialConfig {
 };
 
 struct IntegrationConfig {
-  double time_step_fraction = 0.2; ///< of the Rayleigh critical step of the smallest particle
-  double time_step = 0.0;          ///< explicit step [s]; 0 = from the fraction; refused above critical
-  double damping = 0.05;           ///< viscous contact damping ratio during loading (see docs/methods/dem.md)
-  double global_damping = 0.0;     ///< global damping of the fluctuating motion during loading, of critical
-  double skin = 0.1;               ///< neighbour-list skin in units of D50
-  std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
-  double servo_gain = 0.2;            ///< fraction of the stress error removed per servo update
-  double explosion_overlap = 0.05;    ///< stop when an overlap exceeds this fraction of the smaller radius
+  double time_step_fraction =
+      0.5; ///< of the Rayleigh critical step of the smallest particle (docs/methods/dem.md, "Time step")
+  double time_step = 0.0;      ///< explicit step [s]; 0 = from the fraction; refused above critical
+  double damping = 0.05;       ///< viscous contact damping ratio during loading (see docs/methods/dem.md)
+  double global_damping = 0.0; ///< global damping of the fluctuating motion during loading, of critical
+  double skin = 0.1;           ///< neighbour-list skin in units of D50
+  std::int64_t control_interval =
+      4; ///< steps between stress measurements and servo updates (2 t_R at the default step)
+  double servo_gain = 0.2;         ///< fraction of the stress error removed per servo update
+  double explosion_overlap = 0.05; ///< stop when an overlap exceeds this fraction of the smaller radius
 };
 
 struct PrepareConfig {
@@ -77,7 +79,7 @@ struct EquilibriumConfig {
   double tolerance = 1e-4;           ///< unbalanced-force ratio at which a state counts as static
   double stress_tolerance = 1e-3;    ///< |p - p_target| / p_target at the same time
   double damping = 0.1;              ///< global damping ratio while relaxing
-  std::int64_t verify_steps = 10000; ///< the tolerances must then hold this long without extra damping
+  std::int64_t verify_steps = 20000; ///< the tolerances must then hold this long without extra damping
   std::int64_t max_steps = 500000;   ///< a relaxation that needs more stops with exit 5
   bool at_checkpoints = true;        ///< relax before writing each load checkpoint
 };

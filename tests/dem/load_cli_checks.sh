@@ -18,7 +18,8 @@ settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycle
           --set dem.equilibrium.tolerance=1e-3 --set dem.equilibrium.verify_steps=2000
           --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
           --set dem.load.final_strain=0.002 --set 'dem.load.checkpoint_strains=[0.001, 0.002]'
-          --set dem.load.history_interval=2e-4 --set dem.output_dir="$work")
+          --set dem.load.history_interval=2e-4 --set dem.output_dir="$work"
+          --set dem.integration.time_step_fraction=0.2 --set dem.integration.control_interval=10)
 "$build/dem/aniso-dem" prepare "${settings[@]}" --log-level warn
 "$build/dem/aniso-dem" load "${settings[@]}" --set dem.equilibrium.at_checkpoints=false \
   --input "$work/prepared.h5" > "$work/load.log" 2>&1
