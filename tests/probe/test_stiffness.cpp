@@ -126,13 +126,13 @@ TEST(Stiffness, FlagsAnIncrementThatMakesContactsSlide) {
   forks[0].sliding_final = 150;
   for (int k = 1; k <= n_forks; ++k)
     forks[static_cast<std::size_t>(k)].sliding_final = 160;
-  forks[4].sliding_final = 300; // the compression fork on x2 made 15% of the contacts slide
+  forks[4].sliding_final = 350; // the compression fork on x2 made 20% of the contacts slide
   const Stiffness s = assemble_stiffness(forks);
-  EXPECT_NEAR(s.sliding_minus[1], 0.15, 1e-12);
+  EXPECT_NEAR(s.sliding_minus[1], 0.2, 1e-12);
   EXPECT_NEAR(s.sliding_plus[0], 0.01, 1e-12);
   const std::string problems = increment_problems(s, IncrementTolerances{});
   EXPECT_NE(problems.find("increment too large"), std::string::npos) << problems;
-  EXPECT_NE(problems.find("0.15 of the contacts slide"), std::string::npos) << problems;
+  EXPECT_NE(problems.find("0.2 of the contacts slide"), std::string::npos) << problems;
 }
 
 TEST(Stiffness, FlagsAnIncrementLostInRoundOff) {
