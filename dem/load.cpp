@@ -168,10 +168,6 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
   const std::int64_t start_step = simulation.step_count();
   double next_history =
       (std::floor(compressive_strain(simulation) / load.history_interval) + 1) * load.history_interval;
-  // Increments end at multiples of load.increment, found from the strain alone, so that a
-  // resumed run triggers them where the uninterrupted one did.
-  double next_increment =
-      load.increment > 0 ? next_multiple(compressive_strain(simulation), load.increment) : 0;
   EquilibriumConfig increment_tolerances = config.equilibrium;
   increment_tolerances.tolerance = load.increment_tolerance;
   increment_tolerances.verify_steps = 0;
@@ -180,6 +176,16 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
          load.checkpoint_strains[next_checkpoint] <= compressive_strain(simulation)) {
     ++next_checkpoint;
   }
+  // Increments end at multiples of load.increment and at every checkpoint strain, so that
+  // each checkpoint is a relaxed state; both follow from the strain alone, so a resumed run
+  // ends them where the uninterrupted one did.
+  const auto increment_end = [&](double strain) {
+    double end = next_multiple(strain, load.increment);
+    for (const double checkpoint_strain : load.checkpoint_strains)
+      if (checkpoint_strain > strain) end = std::min(end, checkpoint_strain);
+    return end;
+  };
+  double next_increment = load.increment > 0 ? increment_end(compressive_strain(simulation)) : 0;
   const double rate = -simulation.control().target[0];
   logger->info(
       "load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s", rate,
@@ -198,7 +204,7 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
           relax_to_equilibrium(simulation, increment_tolerances, config.equilibrium.max_steps, logger,
                                fmt::format("relaxation after the increment to strain {:.5g}", strain))
               .steps;
-      next_increment = next_multiple(strain, load.increment);
+      next_increment = increment_end(strain);
     }
     if (strain >= next_history || strain >= load.final_strain) {
       history.append(history_row(simulation, config));

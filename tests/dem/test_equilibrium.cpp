@@ -202,12 +202,14 @@ TEST(Equilibrium, LoadCheckpointsAreWrittenStaticAndStayStatic) {
 }
 
 TEST(Equilibrium, IncrementalLoadingRelaxesEveryIncrementAndResumesBitForBit) {
-  // OVAL's loading: increments of 5e-4, each relaxed to a force ratio of 1e-2; a run resumed
-  // from its checkpoint at 0.1 % ends in the same bits as the uninterrupted one.
+  // OVAL's loading: increments of 5e-4, each relaxed to a force ratio of 1e-2, and one more
+  // ending at the checkpoint strain 0.07 %, between two multiples; a run resumed from that
+  // checkpoint ends in the same bits as the uninterrupted one.
   DemConfig config = test::small_config(150, 5);
   config.load.final_strain = 0.002;
   config.load.increment = 5e-4;
-  config.load.checkpoint_strains = {0.001};
+  config.load.checkpoint_strains = {0.0007, 0.001};
+  config.equilibrium.at_checkpoints = false; // the increment's own relaxation is what is tested
   config.load.history_interval = 2.5e-4;
   const test::TemporaryFolder folder("equilibrium_increments");
   const std::string output = folder.file("");
@@ -228,6 +230,8 @@ TEST(Equilibrium, IncrementalLoadingRelaxesEveryIncrementAndResumesBitForBit) {
   }
   const std::vector<double> p_straight = History::read(output).column("p");
   const h5::Checkpoint checkpoint = h5::read_checkpoint(first.checkpoints[0], self);
+  EXPECT_NEAR(-checkpoint.cell.lengths[0] / checkpoint.cell.reference_lengths[0] + 1.0, 0.0007, 1e-6);
+  EXPECT_LT(checkpoint.unbalanced_force_ratio, config.load.increment_tolerance); // an increment ended there
   Simulation resumed = from_checkpoint(checkpoint, first.checkpoints[0], self);
   (void)run_loading(resumed, config, output, test::test_provenance(), make_silent_logger(), true);
   EXPECT_EQ(resumed.step_count(), straight.step_count());
