@@ -62,6 +62,26 @@ TEST(Prepare, AnUnreachableTargetFailsNamingTheVoidRatioReached) {
   }
 }
 
+TEST(Prepare, ACycleThatConsolidationCompactsPastTheToleranceIsNamed) {
+  // The target is cycle 1's seized e, so the cycles stop there; consolidation to p0 then
+  // compacts it by more than a tolerance of a third of that compaction. The message must
+  // blame the consolidation, not a first cycle that packs too densely.
+  const PreparedAssembly first = prepare(fast_config(1, 0.0));
+  const double seized = first.cycle_void_ratios[0];
+  const double compaction = seized - first.consolidated.void_ratio;
+  ASSERT_GT(compaction, 0.0);
+  DemConfig config = fast_config(3, seized);
+  config.prepare.void_ratio_tolerance = compaction / 3;
+  try {
+    (void)prepare(config);
+    FAIL() << "expected a ConvergenceError";
+  } catch (const ConvergenceError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("consolidation to p0 compacted the kept cycle 1"), std::string::npos) << message;
+    EXPECT_EQ(message.find("the first cycle already packs denser"), std::string::npos) << message;
+  }
+}
+
 TEST(Prepare, ReachesTheTargetWithinItsTolerance) {
   // The paper's protocol reaches a target: the prepared e lies within the tolerance of it and
   // the assembly is consolidated to p0 in static equilibrium.
