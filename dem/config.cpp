@@ -129,6 +129,10 @@ DemConfig read_dem_config(config::Reader& reader) {
   pr.consolidation_tolerance =
       reader.real("dem.prepare.consolidation_tolerance", pr.consolidation_tolerance, units::none,
                   Range::open(0.0, 0.5), "|p - p0|/p0 to end consolidation");
+  pr.refinement_cycles = reader.integer(
+      "dem.prepare.refinement_cycles", pr.refinement_cycles, Range::closed(0, 100),
+      "most re-runs of the cycle that steps across the target (plus the consolidation's compaction) with a "
+      "weaker agitation");
 
   auto& l = c.load;
   l.inertial_number = reader.real("dem.load.inertial_number", l.inertial_number, units::none,

@@ -62,6 +62,7 @@ struct PrepareConfig {
   double seize_force_ratio = 1e-2;                ///< unbalanced-force ratio a held, seized assembly is below
   double agitation_speed = 0.1;           ///< rms random speed between cycles, in units of sqrt(p0/rho)
   double consolidation_tolerance = 0.005; ///< |p - p0| / p0 at the end of consolidation
+  std::int64_t refinement_cycles = 6;     ///< most re-runs of a cycle with a weaker agitation
 };
 
 struct LoadConfig {

@@ -6,6 +6,7 @@
 #include "dem/rotation.hpp"
 #include "dem/settings.hpp"
 #include "dem/size_distribution.hpp"
+#include "dem/spatial_order.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -134,6 +135,22 @@ Quat random_orientation(RandomStream& stream) {
 
 } // namespace
 
+double refinement_energy(std::span<const AgitationRun> runs, double aim) {
+  double x_lo = 0, e_lo = INFINITY, x_hi = INFINITY, e_hi = 0;
+  for (const AgitationRun& run : runs)
+    if (run.void_ratio > aim && (e_lo == INFINITY || run.energy > x_lo))
+      x_lo = run.energy, e_lo = run.void_ratio;
+  for (const AgitationRun& run : runs)
+    if (run.void_ratio <= aim && run.energy > x_lo && run.energy < x_hi)
+      x_hi = run.energy, e_hi = run.void_ratio;
+  require_input(e_lo != INFINITY && x_hi != INFINITY,
+                "refinement_energy: the runs do not bracket the aim (a run above it at a lower energy "
+                "than one below it)");
+  // Kept a tenth of the bracket away from its ends, where the noise of the seized e could pin it.
+  const double fraction = std::clamp((e_lo - aim) / (e_lo - e_hi), 0.1, 0.9);
+  return x_lo + fraction * (x_hi - x_lo);
+}
+
 Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement,
                            const mpi::Comm& comm) {
   const auto& pc = config.particles;
@@ -151,7 +168,9 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
   const Vec3 lengths(aspect[0] * unit, aspect[1] * unit, aspect[2] * unit);
   const PeriodicCell cell(lengths);
   // Random sequential addition, largest first, so that no two particles overlap.
-  Particles particles;
+  std::vector<Vec3> positions;
+  std::vector<double> radii;
+  std::vector<Quat> orientations_drawn;
   for (std::size_t k = 0; k < diameters.size(); ++k) {
     const double radius = 0.5 * diameters[k];
     // Ovoids get uniformly random orientations; spheres keep the identity (it carries nothing).
@@ -161,17 +180,30 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
       const Vec3 x(placement.uniform(0, lengths[0]), placement.uniform(0, lengths[1]),
                    placement.uniform(0, lengths[2]));
       placed = true;
-      for (std::size_t other = 0; other < particles.size() && placed; ++other) {
-        const double reach = radius + particles.radius[other];
-        placed = cell.minimum_image(x - particles.position[other]).squaredNorm() > reach * reach;
+      for (std::size_t other = 0; other < positions.size() && placed; ++other) {
+        const double reach = radius + radii[other];
+        placed = cell.minimum_image(x - positions[other]).squaredNorm() > reach * reach;
       }
-      if (placed) particles.add(k, radius, pc.aspect_ratio, pc.splice_angle, pc.density, x, orientation);
+      if (placed) {
+        positions.push_back(x);
+        radii.push_back(radius);
+        orientations_drawn.push_back(orientation);
+      }
     }
     if (!placed) {
       throw ConvergenceError(fmt::format("could not place particle {} of {} without overlap: lower "
                                          "dem.prepare.initial_solid_fraction ({})",
                                          k + 1, diameters.size(), config.prepare.initial_solid_fraction));
     }
+  }
+  // Ids in spatial order (dem/spatial_order.hpp): the compaction is nearly affine, so
+  // neighbours at the sparse start stay neighbours in the dense assembly.
+  Particles particles;
+  const std::vector<std::size_t> order = spatial_order(positions, lengths, 2.0 * pc.d50);
+  for (std::size_t id = 0; id < order.size(); ++id) {
+    const std::size_t k = order[id];
+    particles.add(id, radii[k], pc.aspect_ratio, pc.splice_angle, pc.density, positions[k],
+                  orientations_drawn[k]);
   }
   h5::CellState state;
   state.lengths = lengths;
@@ -183,92 +215,232 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
   return Simulation(std::move(particles), state, settings, 0.0, 0, false, comm);
 }
 
-PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm) {
-  RandomStream sizes(config.seed, 0), placement(config.seed, 1), agitation(config.seed, 2);
-  const auto& pc = config.particles;
-  const auto& pr = config.prepare;
-  Simulation simulation = sparse_assembly(config, sizes, placement, comm);
-  simulation.watch_equilibrium(true); // the seize test reads it at every control update
-  const double rate =
-      strain_rate_for_inertial_number(pr.inertial_number, pc.d50, pc.density, pr.confining_pressure);
-  logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction rate "
-               "{:.3g} /s",
-               pc.count, 1e3 * simulation.cell().lengths()[0], 1e3 * simulation.cell().lengths()[1],
-               1e3 * simulation.cell().lengths()[2], simulation.settings().time_step, rate);
-  PreparedAssembly result;
-  std::optional<Simulation> best;
-  double best_distance = INFINITY;
-  const double rms_speed = pr.agitation_speed * std::sqrt(pr.confining_pressure / pc.density);
-  for (int cycle = 1; cycle <= pr.cycles; ++cycle) {
-    if (cycle > 1) agitate(simulation, rms_speed, agitation);
-    const std::int64_t steps =
-        compact_until_seized(simulation, -rate, pr, logger, fmt::format("compaction cycle {}", cycle));
-    const StateMeasures m = simulation.measure();
-    result.cycle_void_ratios.push_back(m.void_ratio);
-    logger->info("cycle {:2d}: seized after {} steps at e = {:.4f}, Z = {:.3f}", cycle, steps, m.void_ratio,
-                 m.coordination);
-    const double distance = std::abs(m.void_ratio - pr.target_void_ratio);
-    if (distance < best_distance) {
-      best_distance = distance;
-      best = simulation;
-      result.chosen_cycle = cycle;
-    }
-    // Each cycle packs denser (agitation then compaction), so once one seizes at or below
-    // the target the later ones only move away from it: `cycles` is a maximum.
-    if (m.void_ratio <= pr.target_void_ratio) {
-      if (cycle < pr.cycles) logger->info("cycle {} reached the target: no further cycles", cycle);
-      break;
-    }
+namespace {
+
+// The seized states of the protocol: one per compaction cycle, and the refinements of a cycle
+// (the same cycle run again from the previous one's seized state with a weaker agitation).
+struct Seized {
+  Simulation state;
+  double void_ratio = 0;
+  int cycle = 0;               // 1-based
+  int refinement = 0;          // 0: the cycle itself
+  double agitation_energy = 1; // of the agitation that led to it, as a fraction of the configured one
+  bool consolidated = false;
+};
+
+struct Consolidated {
+  Simulation state;
+  StateMeasures measures;
+  Relaxation relaxation;
+  double seized_void_ratio = 0;
+  int cycle = 0, refinement = 0; // of the seized state
+};
+
+std::string seized_name(int cycle, int refinement) {
+  return refinement == 0 ? fmt::format("cycle {}", cycle)
+                         : fmt::format("refinement {} of cycle {}", refinement, cycle);
+}
+
+class Protocol {
+public:
+  Protocol(const DemConfig& config, const Logger& logger, const mpi::Comm& comm)
+      : config_(config), logger_(logger), sizes_(config.seed, 0), placement_(config.seed, 1),
+        agitation_(config.seed, 2), refinement_stream_(config.seed, 4),
+        sparse_(sparse_assembly(config, sizes_, placement_, comm)) {
+    sparse_.watch_equilibrium(true); // the seize test reads it at every control update
+    const auto& pc = config.particles;
+    rate_ = strain_rate_for_inertial_number(config.prepare.inertial_number, pc.d50, pc.density,
+                                            config.prepare.confining_pressure);
+    rms_speed_ = config.prepare.agitation_speed * std::sqrt(config.prepare.confining_pressure / pc.density);
+    logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction "
+                 "rate {:.3g} /s",
+                 pc.count, 1e3 * sparse_.cell().lengths()[0], 1e3 * sparse_.cell().lengths()[1],
+                 1e3 * sparse_.cell().lengths()[2], sparse_.settings().time_step, rate_);
   }
-  logger->info("keeping cycle {} (e = {:.4f}, target {:.4f})", result.chosen_cycle,
-               result.cycle_void_ratios[static_cast<std::size_t>(result.chosen_cycle - 1)],
-               pr.target_void_ratio);
-  Simulation chosen = std::move(*best);
-  chosen.set_friction(config.material.friction);
+
+  PreparedAssembly run();
+
+private:
+  const DemConfig& config_;
+  const Logger& logger_;
+  RandomStream sizes_, placement_, agitation_, refinement_stream_;
+  Simulation sparse_;
+  double rate_ = 0, rms_speed_ = 0;
+  std::vector<Seized> seized_;      // cycles in order, refinements appended as they run
+  std::vector<std::size_t> cycles_; // indices into seized_ of the cycles themselves
+  int refinements_ = 0;
+
+  double target() const { return config_.prepare.target_void_ratio; }
+  double tolerance() const { return config_.prepare.void_ratio_tolerance; }
+  bool cycles_left() const { return static_cast<std::int64_t>(cycles_.size()) < config_.prepare.cycles; }
+  void run_cycle();
+  bool refine(double aim);
+  Consolidated consolidate_seized(Seized& seized);
+  std::string failure_hint(const Consolidated& best, double aim) const;
+};
+
+void Protocol::run_cycle() {
+  const int cycle = static_cast<int>(cycles_.size()) + 1;
+  Simulation simulation = cycles_.empty() ? sparse_ : seized_[cycles_.back()].state;
+  if (cycle > 1) agitate(simulation, rms_speed_, agitation_);
+  const std::int64_t steps = compact_until_seized(simulation, -rate_, config_.prepare, logger_,
+                                                  fmt::format("compaction cycle {}", cycle));
+  const StateMeasures m = simulation.measure();
+  logger_->info("cycle {:2d}: seized after {} steps at e = {:.4f}, Z = {:.3f}", cycle, steps, m.void_ratio,
+                m.coordination);
+  cycles_.push_back(seized_.size());
+  seized_.push_back(Seized{std::move(simulation), m.void_ratio, cycle, 0, 1.0, false});
+}
+
+// Runs cycle k + 1 again from the state cycle k seized in, with the agitation energy chosen so
+// that it seizes at `aim`: interpolated, linearly in the energy, between the runs of that cycle
+// that seized nearest above and below the aim (energy 0 leaves cycle k's e). Returns false
+// when no cycle brackets the aim.
+bool Protocol::refine(double aim) {
+  std::size_t k = 0;
+  while (k + 1 < cycles_.size() &&
+         !(seized_[cycles_[k]].void_ratio > aim && seized_[cycles_[k + 1]].void_ratio <= aim))
+    ++k;
+  if (k + 1 >= cycles_.size()) return false;
+  const Seized& base = seized_[cycles_[k]];
+  const int cycle = base.cycle + 1;
+  std::vector<AgitationRun> runs{{0.0, base.void_ratio}, {1.0, seized_[cycles_[k + 1]].void_ratio}};
+  for (const Seized& s : seized_)
+    if (s.cycle == cycle && s.refinement > 0) runs.push_back({s.agitation_energy, s.void_ratio});
+  const double energy = refinement_energy(runs, aim);
+  ++refinements_;
+  Simulation simulation = base.state;
+  agitate(simulation, rms_speed_ * std::sqrt(energy), refinement_stream_);
+  const std::int64_t steps =
+      compact_until_seized(simulation, -rate_, config_.prepare, logger_,
+                           fmt::format("refinement {} of cycle {}", refinements_, cycle));
+  const StateMeasures m = simulation.measure();
+  logger_->info(
+      "refinement {} of cycle {} (agitation energy x {:.3f}, aiming at e = {:.4f}): seized after {} "
+      "steps at e = {:.4f}",
+      refinements_, cycle, energy, aim, steps, m.void_ratio);
+  seized_.push_back(Seized{std::move(simulation), m.void_ratio, cycle, refinements_, energy, false});
+  return true;
+}
+
+Consolidated Protocol::consolidate_seized(Seized& seized) {
+  seized.consolidated = true;
+  logger_->info("consolidating {} (seized at e = {:.4f}) to p0", seized_name(seized.cycle, seized.refinement),
+                seized.void_ratio);
+  Consolidated result{seized.state, {}, {}, seized.void_ratio, seized.cycle, seized.refinement};
+  Simulation& chosen = result.state;
+  chosen.set_friction(config_.material.friction);
   // Consolidated with the damping that loading will use, so that the relaxation proves the
   // state static with it (a state verified with heavier damping can creep without it).
-  chosen.set_damping(config.integration.damping);
-  chosen.set_servo_max_rate(rate);
-  chosen.set_global_damping(config.integration.global_damping);
-  const Relaxation consolidation = consolidate(chosen, config, rate, logger);
+  chosen.set_damping(config_.integration.damping);
+  chosen.set_servo_max_rate(rate_);
+  chosen.set_global_damping(config_.integration.global_damping);
+  result.relaxation = consolidate(chosen, config_, rate_, logger_);
   chosen.watch_equilibrium(false);
-  result.consolidated = chosen.measure();
-  logger->info("consolidation took {} steps; unbalanced-force ratio {:.2e}, kinetic/elastic {:.2e}",
-               consolidation.steps, consolidation.equilibrium.unbalanced_force_ratio,
-               consolidation.equilibrium.kinetic_elastic_ratio());
-  logger->info(
-      "consolidated to p = {:.4g} Pa: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f} ({} rattlers, "
-      "{:.1f}%)",
-      result.consolidated.mean_stress, result.consolidated.void_ratio, result.consolidated.coordination,
-      result.consolidated.coordination_no_rattlers, result.consolidated.n_rattlers,
-      100.0 * static_cast<double>(result.consolidated.n_rattlers) / static_cast<double>(pc.count));
-  const double miss = result.consolidated.void_ratio - pr.target_void_ratio;
-  const double kept = result.cycle_void_ratios[static_cast<std::size_t>(result.chosen_cycle - 1)];
-  // Below the target: either the cycles were already too dense, or consolidation to p0
-  // compacted a cycle that was within the tolerance (flat ovoids: by 0.005 at demo size).
-  const std::string denser_hint =
-      result.cycle_void_ratios.front() < pr.target_void_ratio - pr.void_ratio_tolerance
-          ? std::string("the first cycle already packs denser: raise dem.material.friction_prepare")
-          : fmt::format("consolidation to p0 compacted the kept cycle {} from e = {:.4f} by {:.4f}: raise "
-                        "dem.prepare.target_void_ratio by about that much, so that the cycles stop "
-                        "earlier, or widen dem.prepare.void_ratio_tolerance",
-                        result.chosen_cycle, kept, kept - result.consolidated.void_ratio);
-  if (std::abs(miss) > pr.void_ratio_tolerance) {
+  result.measures = chosen.measure();
+  const StateMeasures& m = result.measures;
+  logger_->info("consolidation took {} steps; unbalanced-force ratio {:.2e}, kinetic/elastic {:.2e}",
+                result.relaxation.steps, result.relaxation.equilibrium.unbalanced_force_ratio,
+                result.relaxation.equilibrium.kinetic_elastic_ratio());
+  logger_->info("consolidated to p = {:.4g} Pa: e = {:.4f} (compacted by {:.4f}), Z = {:.3f}, Z without "
+                "rattlers = {:.3f} ({} rattlers, {:.1f}%)",
+                m.mean_stress, m.void_ratio, seized.void_ratio - m.void_ratio, m.coordination,
+                m.coordination_no_rattlers, m.n_rattlers,
+                100.0 * static_cast<double>(m.n_rattlers) / static_cast<double>(config_.particles.count));
+  return result;
+}
+
+std::string Protocol::failure_hint(const Consolidated& best, double aim) const {
+  if (best.measures.void_ratio > target())
+    return "raise dem.prepare.cycles or dem.prepare.agitation_speed, or lower dem.material.friction_prepare "
+           "(docs/methods/dem.md, 'Reaching the target void ratio')";
+  const double compaction = best.seized_void_ratio - best.measures.void_ratio;
+  const double first = seized_[cycles_.front()].void_ratio;
+  if (first < target() - tolerance())
+    return "the first cycle already packs denser: raise dem.material.friction_prepare";
+  const std::string what =
+      fmt::format("consolidation to p0 compacted the kept {} from e = {:.4f} by {:.4f}",
+                  seized_name(best.cycle, best.refinement), best.seized_void_ratio, compaction);
+  if (first <= aim)
+    return what +
+           fmt::format(", and no cycle seized above e = {:.4f} (the first at {:.4f}): raise "
+                       "dem.material.friction_prepare or dem.prepare.target_void_ratio by about {:.4f}",
+                       aim, first, compaction);
+  return what +
+         fmt::format(", and {} of at most {} refinement cycles did not seize within half the tolerance "
+                     "of e = {:.4f}: raise dem.prepare.refinement_cycles or widen "
+                     "dem.prepare.void_ratio_tolerance",
+                     refinements_, config_.prepare.refinement_cycles, aim);
+}
+
+// The cycles run until one seizes at or below the target; the one nearest the target is
+// consolidated to p0. Consolidation compacts (flat ovoids by up to 0.005 at demo size), so when
+// the consolidated e misses the target, the compaction it measured moves the aim for the seized
+// e to target + compaction: the cycle nearest that aim is consolidated if it lies within half
+// the tolerance of it, else the cycle that steps across the aim is run again from its
+// predecessor with a weaker agitation, chosen to seize at the aim (refinement cycles).
+PreparedAssembly Protocol::run() {
+  const auto& pr = config_.prepare;
+  std::optional<Consolidated> best;
+  double aim = target();
+  bool compaction_known = false;
+  for (;;) {
+    while ((cycles_.empty() || seized_[cycles_.back()].void_ratio > aim) && cycles_left())
+      run_cycle();
+    if (cycles_.size() < static_cast<std::size_t>(pr.cycles) && !compaction_known &&
+        seized_[cycles_.back()].void_ratio <= aim)
+      logger_->info("cycle {} reached the target: no further cycles", cycles_.size());
+    std::optional<std::size_t> nearest;
+    for (std::size_t k = 0; k < seized_.size(); ++k) {
+      if (seized_[k].consolidated) continue;
+      if (!nearest || std::abs(seized_[k].void_ratio - aim) < std::abs(seized_[*nearest].void_ratio - aim))
+        nearest = k;
+    }
+    const double miss = nearest ? std::abs(seized_[*nearest].void_ratio - aim) : INFINITY;
+    if (compaction_known && miss > 0.5 * tolerance()) {
+      if (refinements_ < pr.refinement_cycles && refine(aim)) continue;
+      if (miss > tolerance()) break;
+    }
+    if (!nearest) break;
+    Consolidated candidate = consolidate_seized(seized_[*nearest]);
+    const double distance = std::abs(candidate.measures.void_ratio - target());
+    const bool better = !best || distance < std::abs(best->measures.void_ratio - target());
+    aim = target() + (candidate.seized_void_ratio - candidate.measures.void_ratio);
+    compaction_known = true;
+    if (better) best = std::move(candidate);
+    if (distance <= tolerance()) break;
+  }
+  const StateMeasures& m = best->measures;
+  if (std::abs(m.void_ratio - target()) > tolerance()) {
+    std::vector<double> cycle_void_ratios;
+    for (std::size_t k : cycles_)
+      cycle_void_ratios.push_back(seized_[k].void_ratio);
     throw ConvergenceError(fmt::format(
         "prepare: the assembly reached e = {:.4f}, {} the target dem.prepare.target_void_ratio = {:.4f} by "
         "more than dem.prepare.void_ratio_tolerance = {:.4f} after {} of at most {} cycles (cycle void "
-        "ratios "
-        "{:.4f}); {}",
-        result.consolidated.void_ratio, miss > 0 ? "above" : "below", pr.target_void_ratio,
-        pr.void_ratio_tolerance, result.cycle_void_ratios.size(), pr.cycles,
-        fmt::join(result.cycle_void_ratios, ", "),
-        miss > 0 ? "raise dem.prepare.cycles or dem.prepare.agitation_speed, or lower "
-                   "dem.material.friction_prepare (docs/methods/dem.md, 'Reaching the target void ratio')"
-                 : denser_hint));
+        "ratios {:.4f}); {}",
+        m.void_ratio, m.void_ratio > target() ? "above" : "below", target(), tolerance(), cycles_.size(),
+        pr.cycles, fmt::join(cycle_void_ratios, ", "), failure_hint(*best, aim)));
   }
-  result.simulation = std::move(chosen);
-  result.rng_state = {sizes.state(), placement.state(), agitation.state()};
+  PreparedAssembly result;
+  for (std::size_t k : cycles_)
+    result.cycle_void_ratios.push_back(seized_[k].void_ratio);
+  for (const Seized& s : seized_)
+    if (s.refinement > 0) result.refinement_void_ratios.push_back(s.void_ratio);
+  result.chosen_cycle = best->cycle;
+  result.chosen_refinement = best->refinement;
+  logger_->info("kept {} (seized at e = {:.4f}, consolidated to {:.4f}, target {:.4f})",
+                seized_name(best->cycle, best->refinement), best->seized_void_ratio, m.void_ratio, target());
+  result.consolidated = m;
+  result.simulation = std::move(best->state);
+  result.rng_state = {sizes_.state(), placement_.state(), agitation_.state(), refinement_stream_.state()};
   return result;
+}
+
+} // namespace
+
+PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm) {
+  return Protocol(config, logger, comm).run();
 }
 
 } // namespace aniso::dem

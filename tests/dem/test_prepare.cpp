@@ -1,10 +1,13 @@
 // The preparation protocol's cycle selection (dem/prepare.cpp, paper section 2):
 // the cycles stop at the first one that seizes at or below the target void ratio,
 // and the kept cycle is the one nearest the target; stopping early changes nothing
-// in the cycles that did run.
+// in the cycles that did run; a consolidation that compacts past the tolerance is met
+// by running the cycle that steps across the aim again with a weaker agitation (its
+// success at demo size: docs/validation.md, alpha = 0.625).
 #include "common/error.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -83,16 +86,62 @@ TEST(Prepare, ACycleThatConsolidationCompactsPastTheToleranceIsNamed) {
 }
 
 TEST(Prepare, ReachesTheTargetWithinItsTolerance) {
-  // The paper's protocol reaches a target: the prepared e lies within the tolerance of it and
-  // the assembly is consolidated to p0 in static equilibrium.
-  const PreparedAssembly first = prepare(fast_config(1, 0.0));
-  const double target = first.cycle_void_ratios[0] - 0.01;
+  // The paper's protocol reaches a target: aimed at what cycle 2 consolidates to, the cycles
+  // stop there, and the assembly is consolidated to p0, within the tolerance, in static
+  // equilibrium. (150 spheres: consolidation compacts a seized state by 0.003 to 0.01 here, so
+  // a target between the cycles is a matter of luck at this size; see the refinement tests.)
+  const PreparedAssembly reference = prepare(fast_config(2, 0.0));
+  const double target = reference.consolidated.void_ratio;
   DemConfig config = fast_config(30, target);
   config.prepare.void_ratio_tolerance = 0.003;
   const PreparedAssembly prepared = prepare(config);
   EXPECT_LT(std::abs(prepared.consolidated.void_ratio - target), 0.003);
   EXPECT_LT(prepared.consolidated.unbalanced_force_ratio, config.equilibrium.tolerance);
-  EXPECT_GT(prepared.cycle_void_ratios.size(), 1u);
+  EXPECT_EQ(prepared.chosen_cycle, 2);
+  EXPECT_EQ(prepared.chosen_refinement, 0);
+}
+
+TEST(Prepare, RefinementEnergyInterpolatesBetweenTheRunsNearestTheAim) {
+  // Cycle 3 seized at 0.60 after the full agitation (energy 1) from cycle 2's 0.62 (energy 0).
+  std::vector<AgitationRun> runs{{0.0, 0.62}, {1.0, 0.60}};
+  EXPECT_NEAR(refinement_energy(runs, 0.615), 0.25, 1e-12);
+  // Within the middle 80% of the bracket: an aim next to either end is pulled inside.
+  EXPECT_NEAR(refinement_energy(runs, 0.6199), 0.1, 1e-12);
+  EXPECT_NEAR(refinement_energy(runs, 0.6001), 0.9, 1e-12);
+  // A refinement at 0.25 seized at 0.605, below the aim 0.61: the bracket becomes [0, 0.25].
+  runs.push_back({0.25, 0.605});
+  EXPECT_NEAR(refinement_energy(runs, 0.61), 0.25 * (0.62 - 0.61) / (0.62 - 0.605), 1e-12);
+  // One at 0.1 seized above it at 0.612: [0.1, 0.25].
+  runs.push_back({0.1, 0.612});
+  EXPECT_NEAR(refinement_energy(runs, 0.61), 0.1 + 0.15 * (0.612 - 0.61) / (0.612 - 0.605), 1e-12);
+  // Runs that do not bracket the aim are refused.
+  EXPECT_THROW((void)refinement_energy(runs, 0.63), InputError);
+  EXPECT_THROW((void)refinement_energy(runs, 0.59), InputError);
+}
+
+TEST(Prepare, RefinementCyclesRunWhereNoCycleMeetsATightTolerance) {
+  // The target lies between the consolidated e of cycles 2 and 3 with a tolerance far below
+  // the scatter of the compaction: cycle 3 is run again from cycle 2 refinement_cycles times,
+  // and the failure names the compaction and the setting; the cycles themselves are those of
+  // a run without a target.
+  const PreparedAssembly all = prepare(fast_config(3, 0.0));
+  DemConfig config = fast_config(3, all.consolidated.void_ratio +
+                                        0.5 * (all.cycle_void_ratios[1] - all.cycle_void_ratios[2]));
+  config.prepare.void_ratio_tolerance = 1e-5;
+  config.prepare.refinement_cycles = 2;
+  try {
+    (void)prepare(config);
+    FAIL() << "expected a ConvergenceError";
+  } catch (const ConvergenceError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("consolidation to p0 compacted the kept"), std::string::npos) << message;
+    EXPECT_NE(message.find("2 of at most 2 refinement cycles"), std::string::npos) << message;
+    EXPECT_NE(message.find("raise dem.prepare.refinement_cycles"), std::string::npos) << message;
+    EXPECT_NE(message.find(fmt::format("cycle void ratios {:.4f}, {:.4f}, {:.4f}", all.cycle_void_ratios[0],
+                                       all.cycle_void_ratios[1], all.cycle_void_ratios[2])),
+              std::string::npos)
+        << message;
+  }
 }
 
 } // namespace
