@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace aniso::dem {
 
@@ -48,8 +49,13 @@ void drift(Particles& particles, PeriodicCell& cell, const Vec3& strain_rate, do
 
 double critical_time_step(const Particles& particles, double density, const ContactMaterial& material) {
   double smallest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < particles.size(); ++k)
-    smallest = std::min(smallest, half_height(particles.radius[k], particles.aspect_ratio[k]));
+  // The volume-equivalent radius (dem/particle_shape.hpp), from the mass for ovoids.
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const double radius = particles.aspect_ratio[k] == 1.0
+                              ? particles.radius[k]
+                              : std::cbrt(3.0 * particles.mass[k] / (4.0 * std::numbers::pi * density));
+    smallest = std::min(smallest, radius);
+  }
   return rayleigh_time_step(smallest, density, material);
 }
 

@@ -15,6 +15,11 @@ double particle_volume(double radius, double aspect_ratio, double splice_angle) 
   return OvoidShape(2.0 * radius, aspect_ratio, splice_angle).volume();
 }
 
+double volume_equivalent_radius(double radius, double aspect_ratio, double splice_angle) {
+  if (aspect_ratio == 1.0) return radius;
+  return std::cbrt(3.0 * particle_volume(radius, aspect_ratio, splice_angle) / (4.0 * std::numbers::pi));
+}
+
 Vec3 particle_inertia(double radius, double aspect_ratio, double splice_angle, double density) {
   if (aspect_ratio == 1.0) {
     const double mass = density * particle_volume(radius, 1.0, splice_angle);

@@ -21,6 +21,11 @@ inline double half_height(double radius, double aspect_ratio) {
   return radius * aspect_ratio;
 }
 
+/// Radius of the sphere of the same volume, the size that sets the time step: a particle's
+/// contact period goes as sqrt(mass / stiffness), and its mass as its volume (docs/methods/dem.md,
+/// "Time step"). For a sphere it is the radius.
+double volume_equivalent_radius(double radius, double aspect_ratio, double splice_angle);
+
 class ShapeTable {
 public:
   explicit ShapeTable(double splice_angle) : splice_angle_(splice_angle) {}

@@ -1,6 +1,7 @@
 #include "dem/settings.hpp"
 
 #include "dem/integrator.hpp"
+#include "dem/particle_shape.hpp"
 
 #include <cmath>
 
@@ -16,7 +17,8 @@ SimulationSettings settings_from_config(const DemConfig& config, double smallest
   s.splice_angle = config.particles.splice_angle;
   s.hertz_radius = config.material.hertz_radius;
   const double critical = rayleigh_time_step(
-      half_height(0.5 * smallest_diameter, config.particles.aspect_ratio), s.density, s.material);
+      volume_equivalent_radius(0.5 * smallest_diameter, config.particles.aspect_ratio, s.splice_angle),
+      s.density, s.material);
   s.time_step = config.integration.time_step > 0 ? config.integration.time_step
                                                  : config.integration.time_step_fraction * critical;
   require_stable_time_step(s.time_step, critical);
