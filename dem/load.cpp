@@ -116,7 +116,8 @@ void require_resume_matches(const Simulation& simulation, const DemConfig& confi
         time_step, stored_step,
         config.integration.time_step > 0 ? config.integration.time_step
                                          : config.integration.time_step_fraction,
-        fmt::format("a time step of {:.6g} s ({:.6g} of critical)", stored_step,
+        // Full precision, so that the stored step can be given back with --set to resume.
+        fmt::format("a time step of {:.17g} s ({:.6g} of critical)", stored_step,
                     stored_step / simulation.critical_time_step()));
   require_input(mismatches.empty(),
                 fmt::format("load --resume: the configuration differs from the loading it would continue "

@@ -7,6 +7,8 @@
 #    resumed run would silently ignore) stops with exit 2 naming the key, and leaves the
 #    files already written untouched.
 # 3. A fresh load applies the configured time step (it once kept the prepared file's).
+# 4. A run resumed under another default time step is refused, and resumes when given back
+#    the stored step exactly as the refusal prints it (a run begun before the defaults changed).
 #
 # usage: load_cli_checks.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -75,5 +77,31 @@ if awk -v r="$ratio" 'BEGIN { exit !(r > 1.9999 && r < 2.0001) }'; then
   echo "fresh load at 0.4 t_R: time step ratio $ratio to the prepared 0.2 t_R"
 else
   echo "FAIL: fresh load at 0.4 t_R ran at $ratio times the prepared step, expected 2"; status=1
+fi
+# 4. The 0.4 t_R run resumed with the configured 0.2: refused, naming the stored step; resumed
+#    with that step (and interval) given back, it ends where it ended before.
+set +e
+"$build/dem/aniso-dem" load "${settings[@]}" --set dem.equilibrium.at_checkpoints=false \
+  --set dem.output_dir="$work/step" --input "$work/step/load_000.h5" --resume > "$work/step/resume.log" 2>&1
+code=$?
+set -e
+stored=$(sed -n 's/.*a time step of \([0-9.e+-]*\) s.*/\1/p' "$work/step/resume.log")
+if [ $code != 2 ] || [ -z "$stored" ]; then
+  echo "FAIL: resume at another time step exited $code, stored step '$stored':"; tail -3 "$work/step/resume.log"
+  status=1
+else
+  cp "$work/step/load_001.h5" "$work/step/uninterrupted_001.h5"
+  "$build/dem/aniso-dem" load "${settings[@]}" --set dem.equilibrium.at_checkpoints=false \
+    --set dem.output_dir="$work/step" --set dem.integration.time_step="$stored" \
+    --set dem.integration.control_interval=5 --input "$work/step/load_000.h5" --resume --log-level warn
+  same=1
+  for group in /particles /contacts /cell; do
+    h5diff "$work/step/uninterrupted_001.h5" "$work/step/load_001.h5" "$group" "$group" > /dev/null || same=0
+  done
+  if [ $same = 1 ]; then
+    echo "resume with the stored step $stored s given back: the same final checkpoint (h5diff)"
+  else
+    echo "FAIL: resumed with the stored step $stored s, the final checkpoint differs"; status=1
+  fi
 fi
 exit $status
