@@ -78,15 +78,23 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
     simulation.set_global_damping(loading_damping);
     const double start_stress = mean_stress_compression_positive(simulation.stress());
     bool stable = true;
-    for (std::int64_t n = 0; n < config.verify_steps && stable; n += interval) {
+    std::int64_t verified = 0;
+    double drift = 0;
+    for (; verified < config.verify_steps && stable; verified += interval) {
       advance_to_update();
       const Equilibrium& e = simulation.equilibrium();
-      const double drift = mean_stress_compression_positive(simulation.stress()) / start_stress - 1.0;
+      drift = mean_stress_compression_positive(simulation.stress()) / start_stress - 1.0;
       stable = e.unbalanced_force_ratio < config.tolerance && e.unbalanced_torque_ratio < config.tolerance &&
                std::abs(drift) < config.stress_tolerance;
     }
     if (stable) break;
     ++left_equilibrium;
+    // Said, so that a progress that falls back from 100% is explained.
+    logger->info(
+        "{}: left equilibrium {} steps into the {}-step verification (unbalanced-force ratio {:.2e}, "
+        "torque ratio {:.2e}, p drift {:.2e}); relaxing again ({} so far)",
+        label, verified, config.verify_steps, simulation.equilibrium().unbalanced_force_ratio,
+        simulation.equilibrium().unbalanced_torque_ratio, drift, left_equilibrium);
     simulation.set_control(held);
   }
   Relaxation result;
