@@ -9,6 +9,19 @@
 
 namespace aniso::dem {
 
+namespace {
+// A debug line of the relaxation's state, to see whether a slow relaxation creeps
+// (e and p moving), oscillates (the servo) or rattles (kinetic energy only).
+void trace(const Simulation& simulation, const Logger& logger, const std::string& label, std::int64_t start) {
+  const Equilibrium& e = simulation.equilibrium();
+  logger->debug("{}: step {}: ratio {:.2e}, torque ratio {:.2e}, kinetic/elastic {:.2e}, servo error {:.2e}, "
+                "e = {:.5f}, contacts {}",
+                label, simulation.step_count() - start, e.unbalanced_force_ratio, e.unbalanced_torque_ratio,
+                e.kinetic_elastic_ratio(), simulation.servo_error(),
+                simulation.cell().volume() / simulation.solid_volume() - 1.0, e.n_contacts);
+}
+} // namespace
+
 bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& config) {
   // NaN (no contacts at all) never counts as static.
   const Equilibrium& e = simulation.equilibrium();
@@ -65,6 +78,7 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
       advance_to_update();
       passed = in_equilibrium(simulation, config) ? passed + 1 : 0;
       const double ratio = simulation.equilibrium().unbalanced_force_ratio;
+      if ((simulation.step_count() - start) % 5000 == 0) trace(simulation, logger, label, start);
       progress.update(std::isfinite(ratio) && ratio > 0
                           ? std::min(-std::log10(ratio), -std::log10(config.tolerance))
                           : 0.0);
@@ -82,6 +96,8 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
     double drift = 0;
     for (; verified < config.verify_steps && stable; verified += interval) {
       advance_to_update();
+      if ((simulation.step_count() - start) % 5000 == 0)
+        trace(simulation, logger, label + " (verifying)", start);
       const Equilibrium& e = simulation.equilibrium();
       drift = mean_stress_compression_positive(simulation.stress()) / start_stress - 1.0;
       stable = e.unbalanced_force_ratio < config.tolerance && e.unbalanced_torque_ratio < config.tolerance &&
