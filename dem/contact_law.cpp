@@ -132,15 +132,19 @@ ContactForce hertz_mindlin_force(const ContactConstants& constants, const PairPr
 
   // Viscous damping, a fraction beta of critical for the linearised springs.
   // On i it is +c v_rel (componentwise): it opposes the approach of j and drags
-  // i along tangentially. The tangential part is added after the Coulomb
-  // cap and is not limited by it.
+  // i along tangentially. A sliding contact gets no tangential damping: the
+  // Coulomb force is all it carries, whatever the slip rate (Kuhn's OVAL and
+  // YADE do the same). A viscous term on top of mu F_n is a friction that grows
+  // with the slip rate, and it made the loading rate-dependent: undrained, the
+  // demo assembly dilated at I = 1e-3 where YADE's Mindlin law liquefies it
+  // (docs/methods/dem-contact-law.md, "Damping").
   double f_normal_total = f_n; // magnitude of the repulsion, force on i is -f_normal_total n
   const double beta = constants.damping_ratio;
   if (beta > 0) {
     const double m = pair.effective_mass;
     f_normal_total -= 2.0 * beta * std::sqrt(m * k_n) * v_n;
     if (f_normal_total < 0) f_normal_total = 0; // never attractive
-    f_t += (2.0 * beta * std::sqrt(m * k_t)) * v_t;
+    if (!history.sliding) f_t += (2.0 * beta * std::sqrt(m * k_t)) * v_t;
   }
 
   result.force_on_i = f_t - f_normal_total * n;

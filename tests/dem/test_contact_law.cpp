@@ -312,6 +312,38 @@ TEST(ContactLaw, TangentialLoadingSaturatesAtCoulombLimitAndUnloadsElastically) 
   }
 }
 
+// 3b. Tangential damping acts on a sticking contact only: a sliding contact carries mu F_n
+// at any slip rate (a viscous term on top would be a rate-dependent friction).
+TEST(ContactLaw, SlidingContactCarriesTheCoulombForceAtAnySlipRate) {
+  const double beta = 0.05;
+  const ContactMaterial material = paper_material(beta);
+  const PairProperties pair = paper_pair();
+  const double overlap = 2e-8;
+  const double f_n = hertz_normal_force(contact_modulus(material), pair.effective_radius, overlap);
+  const double k_t = mindlin_tangential_stiffness(material, pair.effective_radius, overlap);
+  const double c_t = 2.0 * beta * std::sqrt(pair.effective_mass * k_t);
+  const Vec3 normal = Vec3::UnitX();
+  const Vec3 direction = Vec3(0.0, 0.6, 0.8);
+  const double dt = 1e-9;
+  for (const double speed : {1e-4, 1e-2, 1.0}) {
+    ContactHistory history;
+    history.tangential_force = material.friction * f_n * direction; // at the limit: any slip slides
+    const ContactForce result =
+        hertz_mindlin_force(material, pair, {normal, overlap, speed * direction, dt}, history);
+    ASSERT_TRUE(history.sliding) << speed;
+    const Vec3 tangential = result.force_on_i - result.force_on_i.dot(normal) * normal;
+    EXPECT_LT(relative_error(tangential.norm(), material.friction * f_n), 1e-12) << speed;
+  }
+  // Sticking: the spring increment plus the viscous force c_t v_t.
+  ContactHistory history;
+  const double speed = 1e-4;
+  const ContactForce result =
+      hertz_mindlin_force(material, pair, {normal, overlap, speed * direction, dt}, history);
+  ASSERT_FALSE(history.sliding);
+  const double expected = k_t * speed * dt + c_t * speed;
+  EXPECT_LT(relative_error(result.force_on_i.dot(direction), expected), 1e-12);
+}
+
 // 4. The elastic tangential force follows the contact plane when the normal turns.
 TEST(ContactLaw, SpringTurnsWithTheContactFrame) {
   const ContactMaterial material = paper_material();
