@@ -40,8 +40,10 @@ TEST(ProbeValidation, IsotropicAssemblyHasEqualDirectionalModuliAndSmallD) {
   const ProbeResult result = probe("prepared.h5");
   const Stiffness& s = result.stiffness;
   const Vec3 diagonal = s.C.diagonal();
-  // 200 spheres: the directional moduli of an isotropic assembly scatter by about 10% (docs/validation.md).
-  EXPECT_LT(diagonal.maxCoeff() / diagonal.minCoeff() - 1.0, 0.25) << "C = \n" << s.C;
+  // 200 spheres: the directional moduli of an isotropic assembly scatter from packing to packing,
+  // max/min - 1 = 0.03-0.37 over seeds 3-10 (median 0.23; 500 spheres: 0.04-0.21), so the bound is
+  // 0.5: it catches a probe that mixes up directions or a preparation that is not isotropic.
+  EXPECT_LT(diagonal.maxCoeff() / diagonal.minCoeff() - 1.0, 0.5) << "C = \n" << s.C;
   EXPECT_LT(s.D.cwiseAbs().maxCoeff(), 0.3 * s.K_C) << "D = \n" << s.D;
   // Hertzian assembly at 100 kPa: K_C of order 1e8 Pa (the demo assembly: 1.27e8 Pa).
   EXPECT_GT(s.K_C, 3e7);
@@ -61,7 +63,7 @@ TEST(ProbeValidation, CompressionAlongX1StiffensX1AndSoftensX3) {
   const ProbeResult result = probe("load_000.h5");
   const Mat3& c = result.stiffness.C;
   EXPECT_NEAR(result.source.strain, 0.01, 1e-4);
-  // Beyond the scatter of the isotropic assembly (directional moduli within 25%, above): 200
+  // Beyond the scatter of the isotropic assembly (directional moduli within 50%, above): 200
   // spheres at 1% give C11 / C33 = 1.3-1.9 depending on the realisation.
   EXPECT_GT(c(0, 0), 1.25 * c(2, 2)) << "C = \n" << c;
   EXPECT_GT(c(0, 0), c(1, 1)) << "C = \n" << c;
