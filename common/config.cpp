@@ -40,11 +40,20 @@ double as_real(const toml::node& node, std::string_view key, const std::string& 
                                node_text(node), type_name(node)));
 }
 
-void collect_leaf_keys(const toml::table& table, const std::string& prefix, std::vector<std::string>& keys) {
+void collect_leaf_keys(const toml::table& table, const std::string& prefix, const std::string& source,
+                       std::vector<std::string>& keys) {
   for (const auto& [name, node] : table) {
+    // A quoted key with a dot ("dem.seed" = 7) is one key named dem.seed, not dem -> seed: it
+    // would match a known key's spelling here and yet never be read.
+    if (name.str().find('.') != std::string_view::npos) {
+      throw InputError(fmt::format("config key \"{}\"{} in {}: a quoted key must not contain a dot; write "
+                                   "{} = ... without quotes, or as a [table]",
+                                   name.str(), prefix.empty() ? "" : " of [" + prefix + "]", source,
+                                   name.str()));
+    }
     const std::string key = prefix.empty() ? std::string(name.str()) : prefix + "." + std::string(name.str());
     if (const auto* child = node.as_table()) {
-      collect_leaf_keys(*child, key, keys);
+      collect_leaf_keys(*child, key, source, keys);
     } else {
       keys.push_back(key);
     }
@@ -54,7 +63,9 @@ void collect_leaf_keys(const toml::table& table, const std::string& prefix, std:
 } // namespace
 
 bool Range::contains(double value) const {
-  if (std::isnan(value)) return false;
+  // No setting is infinite: an unbounded range means "any finite value" (inf as a density or
+  // a pressure made runs that never end).
+  if (!std::isfinite(value)) return false;
   const bool above = min_inclusive ? value >= min : value > min;
   const bool below = max_inclusive ? value <= max : value < max;
   return above && below;
@@ -200,7 +211,7 @@ void Reader::tolerate_sections(const std::vector<std::string>& sections) {
 
 void Reader::reject_unknown() const {
   std::vector<std::string> keys;
-  collect_leaf_keys(table_, "", keys);
+  collect_leaf_keys(table_, "", source_, keys);
   std::vector<std::string> unknown;
   for (const auto& key : keys) {
     const std::string section = key.substr(0, key.find('.'));

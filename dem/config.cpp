@@ -144,6 +144,21 @@ DemConfig read_dem_config(config::Reader& reader) {
   l.checkpoint_strains =
       reader.reals("dem.load.checkpoint_strains", {}, units::none, Range::open_closed(0.0, 0.9), 0,
                    "compressive strains -eps11 at which checkpoints are written");
+  // load_NNN.h5 is numbered in list order and the loading passes each strain once.
+  for (std::size_t k = 0; k < l.checkpoint_strains.size(); ++k) {
+    const double strain = l.checkpoint_strains[k];
+    if (k > 0 && strain <= l.checkpoint_strains[k - 1]) {
+      throw InputError(
+          fmt::format("config key 'dem.load.checkpoint_strains': element {} = {:g} is not above the "
+                      "one before it ({:g}): list the strains once each, in increasing order",
+                      k, strain, l.checkpoint_strains[k - 1]));
+    }
+    if (strain > l.final_strain) {
+      throw InputError(fmt::format("config key 'dem.load.checkpoint_strains': element {} = {:g} lies beyond "
+                                   "dem.load.final_strain = {:g}, so the loading would never write it",
+                                   k, strain, l.final_strain));
+    }
+  }
   l.history_interval = reader.real("dem.load.history_interval", l.history_interval, units::none,
                                    Range::positive(), "strain between history rows");
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 
 namespace {
 
@@ -79,6 +80,30 @@ TEST(Config, OutOfRangeNamesKeyValueAndRange) {
   Reader list_reader(parse("strains = [0.1, -0.2]\n"), "x");
   EXPECT_THAT(error_of([&] { list_reader.reals("strains", {}, "1", Range::positive(), 1, "s"); }),
               AllOf(HasSubstr("element 1"), HasSubstr("-0.2")));
+}
+
+TEST(Config, InfiniteValuesAreOutOfEveryRange) {
+  // +inf passed every (0, inf) range: a density or a stress of inf made runs that never end.
+  Reader reader(parse("[dem]\ndensity = inf\nfriction = -inf\nstrains = [0.1, inf]\n"), "'d.toml'");
+  EXPECT_THAT(error_of([&] { reader.real("dem.density", 2650.0, "kg/m^3", Range::positive(), "rho"); }),
+              AllOf(HasSubstr("'dem.density'"), HasSubstr("inf"), HasSubstr("out of range")));
+  EXPECT_THAT(error_of([&] { reader.real("dem.friction", 0.5, "1", Range{}, "mu"); }),
+              HasSubstr("'dem.friction'"));
+  EXPECT_THAT(error_of([&] { reader.reals("dem.strains", {}, "1", Range::positive(), 1, "s"); }),
+              AllOf(HasSubstr("element 1"), HasSubstr("inf")));
+  EXPECT_FALSE(Range::non_negative().contains(std::numeric_limits<double>::infinity()));
+  EXPECT_TRUE(Range::non_negative().contains(1e300));
+}
+
+TEST(Config, QuotedDottedKeyIsRefused) {
+  // "dem.seed" = 7 is one key named dem.seed at the top level: it matched the spelling of the
+  // known key in the unknown-key check and was never read.
+  Reader top(parse("\"dem.seed\" = 7\n"), "'e.toml'");
+  EXPECT_THAT(error_of([&] { top.reject_unknown(); }),
+              AllOf(HasSubstr("\"dem.seed\""), HasSubstr("e.toml"), HasSubstr("must not contain a dot")));
+  Reader nested(parse("[dem]\n\"load.final_strain\" = 0.1\n"), "x");
+  EXPECT_THAT(error_of([&] { nested.reject_unknown(); }),
+              AllOf(HasSubstr("\"load.final_strain\""), HasSubstr("[dem]")));
 }
 
 TEST(Config, ChoiceRejectsUnlistedWord) {
