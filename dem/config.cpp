@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "dem/parameter_ranges.hpp"
 
 #include <fmt/format.h>
 
@@ -25,18 +26,18 @@ DemConfig read_dem_config(config::Reader& reader) {
   p.diameter_max = reader.real("dem.particles.diameter_max", p.diameter_max, units::metre, Range::positive(),
                                "largest diameter");
   p.d50 =
-      reader.real("dem.particles.d50", p.d50, units::metre, Range::positive(), "median diameter by volume");
+      reader.real("dem.particles.d50", p.d50, units::metre, ranges::length(), "median diameter by volume");
   p.aspect_ratio =
-      reader.real("dem.particles.aspect_ratio", p.aspect_ratio, units::none, Range::open_closed(0.2, 1.0),
+      reader.real("dem.particles.aspect_ratio", p.aspect_ratio, units::none, ranges::aspect_ratio(),
                   "axial height / mid-plane diameter (paper: 1, 0.8, 0.625, 0.5)");
   p.splice_angle =
       reader.real("dem.particles.splice_angle_degrees", p.splice_angle * 180.0 / std::numbers::pi,
-                  units::none, Range::open(0.0, 90.0),
+                  units::none, ranges::splice_angle_degrees(),
                   "ovoid splice angle beta between axis and surface normal where cap meets band, "
                   "in degrees (Kuhn's OVAL: 45); must be below 2 atan(aspect_ratio)") *
       std::numbers::pi / 180.0;
   p.density =
-      reader.real("dem.particles.density", p.density, units::density, Range::positive(), "solid density");
+      reader.real("dem.particles.density", p.density, units::density, ranges::density(), "solid density");
   if (p.aspect_ratio < 1.0) {
     const double limit = 2.0 * std::atan(p.aspect_ratio);
     require_input(p.splice_angle < limit,
@@ -52,13 +53,13 @@ DemConfig read_dem_config(config::Reader& reader) {
 
   auto& m = c.material;
   m.shear_modulus = reader.real("dem.material.shear_modulus", m.shear_modulus, units::pascal,
-                                Range::positive(), "particle shear modulus G");
+                                ranges::shear_modulus(), "particle shear modulus G");
   m.poisson_ratio = reader.real("dem.material.poisson_ratio", m.poisson_ratio, units::none,
-                                Range::open(-1.0, 0.5), "particle Poisson ratio");
-  m.friction = reader.real("dem.material.friction", m.friction, units::none, Range::non_negative(),
+                                ranges::poisson_ratio(), "particle Poisson ratio");
+  m.friction = reader.real("dem.material.friction", m.friction, units::none, ranges::friction(),
                            "inter-particle friction for consolidation and loading");
   m.friction_prepare = reader.real("dem.material.friction_prepare", m.friction_prepare, units::none,
-                                   Range::non_negative(), "inter-particle friction during compaction cycles");
+                                   ranges::friction(), "inter-particle friction during compaction cycles");
   m.hertz_radius =
       reader.choice("dem.material.hertz_radius", "halfwidth", {"halfwidth", "curvature"},
                     "ovoid Hertz radius: 'halfwidth' R* = a_i a_j / (a_i + a_j) as in Kuhn's "
@@ -73,23 +74,22 @@ DemConfig read_dem_config(config::Reader& reader) {
   i.time_step =
       reader.real("dem.integration.time_step", i.time_step, units::second, Range::non_negative(),
                   "explicit time step (0: from time_step_fraction); refused above the critical step");
-  i.damping = reader.real("dem.integration.damping", i.damping, units::none, Range::closed(0.0, 1.0),
+  i.damping = reader.real("dem.integration.damping", i.damping, units::none, ranges::contact_damping(),
                           "viscous contact damping ratio during loading");
   i.global_damping =
-      reader.real("dem.integration.global_damping", i.global_damping, units::none, Range::closed(0.0, 10.0),
+      reader.real("dem.integration.global_damping", i.global_damping, units::none, ranges::global_damping(),
                   "global damping of the fluctuating motion during loading, as a fraction of "
                   "critical for the mean particle on the mean contact stiffness");
   i.skin = reader.real("dem.integration.skin", i.skin, units::none, Range::open_closed(0.0, 1.0),
                        "neighbour-list skin in units of D50");
   i.control_interval =
-      reader.integer("dem.integration.control_interval", i.control_interval, Range::closed(1, 1e6),
+      reader.integer("dem.integration.control_interval", i.control_interval, ranges::control_interval(),
                      "steps between stress measurements and servo updates");
-  i.servo_gain =
-      reader.real("dem.integration.servo_gain", i.servo_gain, units::none, Range::open_closed(0.0, 1.0),
-                  "fraction of the stress error removed per servo update");
+  i.servo_gain = reader.real("dem.integration.servo_gain", i.servo_gain, units::none, ranges::servo_gain(),
+                             "fraction of the stress error removed per servo update");
   i.explosion_overlap =
       reader.real("dem.integration.explosion_overlap", i.explosion_overlap, units::none,
-                  Range::open(0.0, 1.0), "stop when an overlap exceeds this fraction of a radius");
+                  ranges::explosion_overlap(), "stop when an overlap exceeds this fraction of a radius");
 
   auto& pr = c.prepare;
   pr.cell_aspect = reader.reals("dem.prepare.cell_aspect", pr.cell_aspect, units::none, Range::positive(), 3,
@@ -112,10 +112,10 @@ DemConfig read_dem_config(config::Reader& reader) {
                                       Range::positive(), "isotropic consolidation pressure p0");
   pr.inertial_number = reader.real("dem.prepare.inertial_number", pr.inertial_number, units::none,
                                    Range::open(0.0, 1.0), "compaction and consolidation rate as I at p0");
-  pr.damping = reader.real("dem.prepare.damping", pr.damping, units::none, Range::closed(0.0, 1.0),
+  pr.damping = reader.real("dem.prepare.damping", pr.damping, units::none, ranges::contact_damping(),
                            "contact damping ratio while compacting");
   pr.global_damping =
-      reader.real("dem.prepare.global_damping", pr.global_damping, units::none, Range::closed(0.0, 10.0),
+      reader.real("dem.prepare.global_damping", pr.global_damping, units::none, ranges::global_damping(),
                   "global damping ratio of the fluctuating motion while compacting");
   pr.seize_stress = reader.real("dem.prepare.seize_stress", pr.seize_stress, units::pascal, Range::positive(),
                                 "mean stress at which a compacting assembly counts as seized");

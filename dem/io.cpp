@@ -2,10 +2,12 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "dem/parameter_ranges.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 namespace aniso::dem {
 
@@ -81,30 +83,82 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
 }
 
 SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path) {
+  // Each stored setting within the range its config key allows (dem/parameter_ranges.hpp): a
+  // file is refused for what the configuration would refuse (control_interval 0 divided by zero,
+  // a Poisson ratio of 0.7 gave a NaN critical step that passed the stability check).
+  const auto get = [&](const char* name, const config::Range& range) {
+    const double value = h5::parameter(checkpoint, name, path);
+    if (!range.contains(value)) {
+      throw FileError(fmt::format("{}: /parameters (attribute '{}'): value {:g} is out of range, expected {}",
+                                  path, name, value, range.describe()));
+    }
+    return value;
+  };
   SimulationSettings s;
-  const auto get = [&](const char* name) { return h5::parameter(checkpoint, name, path); };
-  s.material.shear_modulus = get("shear_modulus");
-  s.material.poisson_ratio = get("poisson_ratio");
-  s.material.friction = get("friction");
-  s.material.damping_ratio = get("damping_ratio");
-  s.density = get("density");
+  s.material.shear_modulus = get("shear_modulus", ranges::shear_modulus());
+  s.material.poisson_ratio = get("poisson_ratio", ranges::poisson_ratio());
+  s.material.friction = get("friction", ranges::friction());
+  s.material.damping_ratio = get("damping_ratio", ranges::contact_damping());
+  s.density = get("density", ranges::density());
+  if (!(checkpoint.time_step > 0.0))
+    throw FileError(
+        fmt::format("{}: / (attribute time_step): value {:g}, expected > 0", path, checkpoint.time_step));
   s.time_step = checkpoint.time_step;
-  s.skin = get("skin");
-  s.control_interval = static_cast<std::int64_t>(get("control_interval"));
-  s.servo.gain = get("servo_gain");
-  s.servo.max_rate = get("servo_max_rate");
-  s.servo.integral_intervals = get("servo_integral_intervals");
-  s.explosion_overlap = get("explosion_overlap");
+  s.skin = get("skin", ranges::length());
+  s.control_interval = static_cast<std::int64_t>(get("control_interval", ranges::control_interval()));
+  s.servo.gain = get("servo_gain", ranges::servo_gain());
+  s.servo.max_rate = get("servo_max_rate", config::Range::non_negative()); // 0: no cap
+  s.servo.integral_intervals = get("servo_integral_intervals", config::Range::positive());
+  s.explosion_overlap = get("explosion_overlap", ranges::explosion_overlap());
   // Checkpoints written before ovoids landed hold spheres only: the defaults are exact for them.
-  if (h5::has_parameter(checkpoint, "ovoid_splice_angle")) s.splice_angle = get("ovoid_splice_angle");
-  if (h5::has_parameter(checkpoint, "hertz_radius_curvature") && get("hertz_radius_curvature") != 0.0)
+  if (h5::has_parameter(checkpoint, "ovoid_splice_angle")) {
+    const config::Range radians{0.0, ranges::splice_angle_degrees().max * std::numbers::pi / 180.0, false,
+                                false};
+    s.splice_angle = get("ovoid_splice_angle", radians);
+  }
+  if (h5::has_parameter(checkpoint, "hertz_radius_curvature") &&
+      get("hertz_radius_curvature", config::Range::closed(0.0, 1.0)) != 0.0)
     s.hertz_radius = HertzRadius::curvature;
   // Checkpoints written before the global damping landed ran without it.
-  if (h5::has_parameter(checkpoint, "global_damping")) s.global_damping = get("global_damping");
+  if (h5::has_parameter(checkpoint, "global_damping"))
+    s.global_damping = get("global_damping", ranges::global_damping());
   return s;
 }
 
+namespace {
+
+// The particle rows a simulation can start from: at least one particle, positive sizes, masses
+// and inertias, aspect ratios the shapes support, and positions inside the cell (a particle
+// outside it gave a wrong stress and a wrong image).
+void check_particle_rows(const h5::Checkpoint& checkpoint, const std::string& path) {
+  const auto& rows = checkpoint.particles;
+  if (rows.size() == 0) throw FileError(path + ": /particles: no particles");
+  const Vec3& lengths = checkpoint.cell.lengths;
+  const config::Range aspect = ranges::aspect_ratio();
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto refuse = [&](const char* dataset, const std::string& what) {
+      throw FileError(
+          fmt::format("{}: /particles/{}: row {} (particle id {}): {}", path, dataset, k, rows.id[k], what));
+    };
+    if (!(rows.diameter[k] > 0.0)) refuse("diameter", fmt::format("{:g}, expected > 0", rows.diameter[k]));
+    if (!(rows.mass[k] > 0.0)) refuse("mass", fmt::format("{:g}, expected > 0", rows.mass[k]));
+    if (!(rows.inertia[k].minCoeff() > 0.0)) refuse("inertia", "a principal moment is not > 0");
+    if (!aspect.contains(rows.aspect_ratio[k]))
+      refuse("aspect_ratio", fmt::format("{:g}, expected {}", rows.aspect_ratio[k], aspect.describe()));
+    for (int axis = 0; axis < 3; ++axis) {
+      // Wrapped positions lie in [0, L); a round-off beyond either end is tolerated.
+      const double x = rows.position[k][axis], slack = 1e-9 * lengths[axis];
+      if (!(x >= -slack && x <= lengths[axis] + slack))
+        refuse("position", fmt::format("coordinate {} = {:g} m lies outside the cell [0, {:g}] m", axis, x,
+                                       lengths[axis]));
+    }
+  }
+}
+
+} // namespace
+
 Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path, const mpi::Comm& comm) {
+  check_particle_rows(checkpoint, path);
   const auto& rows = checkpoint.particles;
   Particles particles;
   particles.resize(rows.size());

@@ -1,7 +1,8 @@
 // Failure paths of the DEM stage: an unstable time step is refused before a
 // run starts, an exploding run stops with a NumericalError about the overlap
 // (and a checkpoint written earlier survives it), and an inconsistent grading
-// in the config is rejected naming its keys.
+// in the config is rejected naming its keys; a checkpoint with settings the config would refuse
+// is refused naming the file and the attribute.
 #include "common/config.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
@@ -17,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace {
@@ -160,6 +162,55 @@ TEST(Failures, DiameterMinNotBelowD50IsRejected) {
   // The defaults pass.
   config::Reader reader(toml::table{}, "defaults");
   EXPECT_NO_THROW((void)read_dem_config(reader));
+}
+
+// (d) A checkpoint is refused for what the configuration would refuse, and for particle rows no
+// simulation can start from (issue 22: a control interval of 0 gave SIGFPE, zero particles
+// SIGSEGV, a Poisson ratio of 0.7 or a particle outside the cell ran as given).
+TEST(Failures, CheckpointOutsideTheConfigRangesIsRefused) {
+  const DemConfig config = test::small_config(150, 5);
+  const Simulation simulation = test::loose_assembly(config);
+  const h5::Checkpoint good = to_checkpoint(simulation, config.particles.d50, {});
+  const mpi::Comm self(MPI_COMM_SELF);
+  EXPECT_NO_THROW((void)from_checkpoint(good, "good.h5", self));
+  const auto set_parameter = [](h5::Checkpoint& c, const std::string& name, double value) {
+    for (auto& parameter : c.parameters)
+      if (parameter.name == name) parameter.value = value;
+  };
+  struct Case {
+    const char* what;
+    std::function<void(h5::Checkpoint&)> spoil;
+    const char* expected;
+  };
+  const std::vector<Case> cases{
+      {"control interval 0", [&](h5::Checkpoint& c) { set_parameter(c, "control_interval", 0); },
+       "/parameters (attribute 'control_interval'): value 0 is out of range, expected [1, 1000000]"},
+      {"Poisson ratio 0.7", [&](h5::Checkpoint& c) { set_parameter(c, "poisson_ratio", 0.7); },
+       "'poisson_ratio'): value 0.7 is out of range, expected (-1, 0.5)"},
+      {"negative friction", [&](h5::Checkpoint& c) { set_parameter(c, "friction", -0.1); }, "'friction'"},
+      {"negative density", [&](h5::Checkpoint& c) { set_parameter(c, "density", -2650); }, "'density'"},
+      {"zero time step", [](h5::Checkpoint& c) { c.time_step = 0; }, "time_step): value 0, expected > 0"},
+      {"no particles", [](h5::Checkpoint& c) { c.particles.resize(0); }, "/particles: no particles"},
+      {"particle outside the cell",
+       [](h5::Checkpoint& c) { c.particles.position[3][1] = 2 * c.cell.lengths[1]; },
+       "/particles/position: row 3"},
+      {"zero mass", [](h5::Checkpoint& c) { c.particles.mass[7] = 0; }, "/particles/mass: row 7"},
+      {"aspect ratio 0.1", [](h5::Checkpoint& c) { c.particles.aspect_ratio[2] = 0.1; },
+       "/particles/aspect_ratio: row 2"},
+  };
+  for (const Case& item : cases) {
+    SCOPED_TRACE(item.what);
+    h5::Checkpoint bad = good;
+    item.spoil(bad);
+    try {
+      (void)from_checkpoint(bad, "bad.h5", self);
+      ADD_FAILURE() << "no FileError";
+    } catch (const FileError& error) {
+      EXPECT_TRUE(contains(error.what(), "bad.h5")) << error.what();
+      EXPECT_TRUE(contains(error.what(), item.expected)) << error.what();
+      EXPECT_EQ(error.code(), ExitCode::file_error);
+    }
+  }
 }
 
 } // namespace
