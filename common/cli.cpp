@@ -88,8 +88,10 @@ int run(int argc, char** argv, const std::string& program,
     code = static_cast<int>(ExitCode::internal_error);
     std::cerr << program << rank_tag(comm) << ": internal error: " << error.what() << std::endl;
   }
-  // An error seen by some ranks only must not leave the others waiting in a collective.
-  if (code != 0 && comm.size() > 1) MPI_Abort(MPI_COMM_WORLD, code);
+  // An error seen by some ranks only must not leave the others waiting in a collective. A stop
+  // on SIGTERM is agreed by all ranks (stop_requested), so they finish MPI normally.
+  if (code != 0 && code != static_cast<int>(ExitCode::interrupted) && comm.size() > 1)
+    MPI_Abort(MPI_COMM_WORLD, code);
   return code;
 }
 

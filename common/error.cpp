@@ -19,6 +19,7 @@ const char* exit_code_name(ExitCode code) noexcept {
   case ExitCode::file_error: return "file error";
   case ExitCode::numerical_failure: return "numerical failure";
   case ExitCode::convergence_failure: return "convergence failure";
+  case ExitCode::interrupted: return "interrupted";
   }
   return "unknown";
 }

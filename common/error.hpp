@@ -17,6 +17,7 @@ enum class ExitCode : int {
   file_error = 3,          ///< a file is missing, unreadable, malformed or fails validation
   numerical_failure = 4,   ///< NaN, explosion, a step above the stability limit
   convergence_failure = 5, ///< an iteration did not reach its criterion within its limit
+  interrupted = 143,       ///< stopped on SIGTERM after writing a resumable checkpoint (128 + 15)
 };
 
 /// Base of all aniso errors: carries the exit code the process should end with.

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
+#include "common/stop_request.hpp"
 #include "dem/history.hpp"
 #include "dem/io.hpp"
 #include "dem/measures.hpp"
@@ -234,6 +235,21 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
                    checkpoint.kinetic_elastic_ratio);
       summary.checkpoints.push_back(path);
       ++next_checkpoint;
+    }
+    // SIGTERM (a SLURM time limit or scancel) ends the run at a control update, every rank at
+    // the same step, with a checkpoint from which --resume continues exactly: the increments,
+    // history rows and checkpoints ahead all follow from the strain.
+    if (simulation.step_count() % simulation.settings().control_interval == 0 &&
+        stop_requested(simulation.comm())) {
+      summary.interrupted_checkpoint = output_dir + "/load_interrupted.h5";
+      h5::write_checkpoint(summary.interrupted_checkpoint,
+                           to_checkpoint(simulation, config.particles.d50, {}), provenance,
+                           simulation.comm());
+      logger->warn("load: stopped on SIGTERM at strain {:.6g} (step {}): wrote {}; continue with --input {} "
+                   "--resume",
+                   strain, simulation.step_count(), summary.interrupted_checkpoint,
+                   summary.interrupted_checkpoint);
+      break;
     }
   }
   if (simulation.comm().is_root()) history.write(output_dir, provenance);

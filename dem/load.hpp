@@ -23,6 +23,7 @@ struct LoadSummary {
   std::int64_t relaxation_steps = 0; ///< of `steps`, spent relaxing before checkpoints
   double wall_seconds = 0;
   std::vector<std::string> checkpoints;
+  std::string interrupted_checkpoint; ///< written on SIGTERM, for --resume; empty if the run ended
 };
 
 /// Sets up loading on a prepared assembly: strain measured from here, loading friction

@@ -3,6 +3,7 @@
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
+#include "common/stop_request.hpp"
 #include "dem/config.hpp"
 #include "dem/hold.hpp"
 #include "dem/io.hpp"
@@ -103,8 +104,10 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const auto provenance = h5::make_provenance("aniso-dem load", reader.effective_toml(), command, comm);
   dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input, comm);
   if (!resume) dem::start_loading(simulation, config);
+  install_stop_handler();
   const dem::LoadSummary summary =
       dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume);
+  if (!summary.interrupted_checkpoint.empty()) return static_cast<int>(ExitCode::interrupted);
   logger->info("load done: strain {:.4g} in {} steps ({} relaxing before checkpoints), {:.1f} s wall ({:.3g} "
                "particle-steps/s); peak stress ratio {:.4f} at strain {:.4g}",
                summary.final_strain, summary.steps, summary.relaxation_steps, summary.wall_seconds,

@@ -177,6 +177,13 @@ def load_input(out, config):
             break
         newest = path
         index += 1
+    # A load stopped by SIGTERM (a SLURM time limit) wrote load_interrupted.h5 and then history.h5:
+    # it is the resume point when newer than every numbered checkpoint.
+    interrupted = os.path.join(out, "load_interrupted.h5")
+    if os.path.exists(interrupted):
+        written = os.path.getmtime(interrupted)
+        if oldest_allowed <= written <= history_time and (newest is None or written > os.path.getmtime(newest)):
+            newest = interrupted
     if newest is None:
         return start
     print(f"campaign: resuming the interrupted load from {newest}", file=sys.stderr)

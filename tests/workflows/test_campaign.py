@@ -74,6 +74,18 @@ class LoadInput(unittest.TestCase):
         self.assertEqual(arguments, ["--input", f"{self.out}/load_001.h5", "--resume"])
         self.assertIn("resuming the interrupted load from", log)
 
+    def test_resumes_from_the_checkpoint_a_sigterm_wrote(self):
+        touch(f"{self.out}/load_000.h5", 1200)
+        touch(f"{self.out}/load_interrupted.h5", 1250)  # SIGTERM: checkpoint, then the history
+        touch(f"{self.out}/history.h5", 1251)
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/load_interrupted.h5", "--resume"])
+
+    def test_a_stale_interrupted_checkpoint_yields_to_newer_numbered_ones(self):
+        touch(f"{self.out}/load_interrupted.h5", 1150)  # resumed since, and checkpointed on
+        touch(f"{self.out}/load_000.h5", 1200)
+        touch(f"{self.out}/history.h5", 1201)
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/load_000.h5", "--resume"])
+
     def test_checkpoints_older_than_the_config_are_not_resumed(self):
         touch(f"{self.out}/load_000.h5", 900)
         touch(f"{self.out}/history.h5", 950)

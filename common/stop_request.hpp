@@ -1,0 +1,20 @@
+// A polite stop on SIGTERM, what SLURM sends at a job's time limit (or earlier with
+// `#SBATCH --signal=TERM@120`) and on scancel: the handler only sets a flag, and long loops
+// poll it at safe points and end with a checkpoint that `--resume` continues from.
+#pragma once
+
+#include "common/mpi.hpp"
+
+namespace aniso {
+
+/// Installs the SIGTERM handler (repeat calls do nothing more).
+void install_stop_handler();
+
+/// True once SIGTERM has reached this process.
+[[nodiscard]] bool stop_requested_here();
+
+/// Collective: true on every rank once any rank has received SIGTERM, so that all ranks stop
+/// at the same step.
+[[nodiscard]] bool stop_requested(const mpi::Comm& comm);
+
+} // namespace aniso
