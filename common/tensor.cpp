@@ -15,7 +15,9 @@ double mean_stress_compression_positive(const Mat3& sigma) {
 }
 
 double deviatoric_q(const Mat3& sigma) {
-  const Mat3 s = deviator(sigma);
+  // J2 is defined from the principal stresses (paper Fig. 3 caption), i.e. of the symmetric part:
+  // the skew part of a contact-sum stress of non-spherical particles is not a stress.
+  const Mat3 s = deviator(0.5 * (sigma + sigma.transpose()));
   return std::sqrt(1.5 * s.cwiseProduct(s).sum());
 }
 

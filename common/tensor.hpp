@@ -22,7 +22,8 @@ Mat3 deviator(const Mat3& tensor);
 /// Mean stress, compression positive: p = -tr(sigma)/3 for tension-positive sigma.
 double mean_stress_compression_positive(const Mat3& sigma);
 
-/// Deviatoric stress invariant q = sqrt(3 J2) = sqrt(3/2 s:s) (paper Fig. 3 caption), sign-free.
+/// Deviatoric stress invariant q = sqrt(3 J2) = sqrt(3/2 s:s) (paper Fig. 3 caption), sign-free;
+/// s is the deviator of the symmetric part, so q depends only on the principal stresses.
 double deviatoric_q(const Mat3& sigma);
 
 /// Eigen-decomposition of a symmetric tensor with eigenvalues sorted descending

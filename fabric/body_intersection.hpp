@@ -16,11 +16,11 @@ struct PlacedBody {
   Quat orientation;
 };
 
-/// Spheres: exact (fabric/ball_intersection.hpp). Ovoids: cyclic projections onto the bodies
-/// (each a closed convex set, common/shape/ovoid.hpp closest_point), which reach a common point
-/// when one exists; a point found inside every body is a certificate, so the answer "true" is
-/// exact, and "false" means no common point was reached within the iteration limit (only an
-/// intersection thinner than about 1e-9 D can be missed).
+/// Spheres: exact (fabric/ball_intersection.hpp). Ovoids: minimises the largest signed distance
+/// to the bodies (convex) by prox-linear steps; "true" is certified by a point inside every body,
+/// "false" by a positive lower bound of that distance over a ball holding every common point.
+/// Only when the deepest common point lies within about 1e-13 D of the surfaces (bodies touching
+/// at a point) can the iteration limit end undecided; it then answers false.
 bool bodies_share_point(std::span<const PlacedBody> bodies);
 
 } // namespace aniso::fabric

@@ -26,6 +26,20 @@ TEST(Tensor, QMatchesPaperJ2Definition) {
   EXPECT_NEAR(aniso::deviatoric_q(sigma), std::sqrt(3 * j2), 1e-14);
 }
 
+TEST(Tensor, QOfANonSymmetricStressUsesItsPrincipalStresses) {
+  // A contact-sum stress of ovoids has a skew part; q must come from the principal stresses of
+  // the symmetric part (paper Fig. 3 caption), so the skew part must not change it.
+  Mat3 symmetric;
+  symmetric << -150, 20, 5, 20, -90, -8, 5, -8, -60;
+  Mat3 skew;
+  skew << 0, 30, -12, -30, 0, 7, 12, -7, 0;
+  const auto principal = aniso::sorted_eigen(symmetric).values;
+  const double j2 = (std::pow(principal[0] - principal[1], 2) + std::pow(principal[0] - principal[2], 2) +
+                     std::pow(principal[1] - principal[2], 2)) /
+                    6.0;
+  EXPECT_NEAR(aniso::deviatoric_q(symmetric + skew), std::sqrt(3 * j2), 1e-12);
+}
+
 TEST(Tensor, SortedEigenOfRotatedDiagonal) {
   const Mat3 rotation = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   Mat3 diagonal = Mat3::Zero();

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 namespace aniso::fabric {
@@ -83,6 +84,59 @@ TEST(BodyIntersection, OvoidsAgreeWithSpheresAndFindOverlapsOfFlatParticles) {
   }
   EXPECT_TRUE(bodies_share_point(flat));
   EXPECT_FALSE(bodies_share_point(standing));
+}
+
+// An ovoid of shape (D = 1, alpha) and random orientation placed so that its surface point with
+// outward world normal n lies at P + offset n: P is inside at depth offset (offset > 0, below the
+// smallest radius of curvature) or outside at distance -offset from the tangent plane there.
+PlacedBody body_touching_at(const Vec3& P, const Vec3& n, double offset, double alpha, const Quat& q) {
+  const OvoidShape shape(1.0, alpha);
+  const Mat3 r = q.toRotationMatrix();
+  const Vec3 support = shape.support(r.transpose() * n).point;
+  return {1.0, alpha, OvoidShape::default_splice_angle, P + offset * n - r * support, q};
+}
+
+Quat random_orientation(std::mt19937_64& rng) {
+  std::normal_distribution<double> gauss;
+  return Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized();
+}
+
+TEST(BodyIntersection, ThinCommonRegionsOfOvoidsAreFoundAndNearMissesRejected) {
+  // Bodies whose outward normals at P sum to zero (three at 120 degrees in a plane, or four
+  // tetrahedral) share a region of depth `offset` about P when it is inside them all, a thin
+  // needle for the planar triple, where cyclic projections need thousands of sweeps; and none
+  // when P is outside them all (their tangent half-spaces already exclude each other).
+  // Both answers are certain by construction, for every alpha and orientation.
+  std::mt19937_64 rng(2015);
+  int cases = 0;
+  for (double alpha : {0.5, 0.625, 0.8}) {
+    for (double depth : {1e-3, 1e-5, 1e-7}) {
+      for (int trial = 0; trial < 8; ++trial) {
+        const Mat3 frame = random_orientation(rng).toRotationMatrix();
+        const Vec3 P(0.3, -0.2, 0.1);
+        std::vector<Vec3> normals;
+        for (int k = 0; k < 3; ++k)
+          normals.push_back(frame * Vec3(std::cos(2 * pi * k / 3), std::sin(2 * pi * k / 3), 0));
+        std::vector<Vec3> tetrahedral;
+        for (const Vec3& v : {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)})
+          tetrahedral.push_back(frame * v.normalized());
+        for (const auto* set : {&normals, &tetrahedral}) {
+          std::vector<PlacedBody> sharing, apart;
+          for (const Vec3& n : *set) {
+            const Quat q = random_orientation(rng);
+            sharing.push_back(body_touching_at(P, n, depth, alpha, q));
+            apart.push_back(body_touching_at(P, n, -depth, alpha, q));
+          }
+          EXPECT_TRUE(bodies_share_point(sharing))
+              << "alpha " << alpha << " depth " << depth << " trial " << trial << " bodies " << set->size();
+          EXPECT_FALSE(bodies_share_point(apart))
+              << "alpha " << alpha << " depth " << depth << " trial " << trial << " bodies " << set->size();
+          cases += 2;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 3 * 3 * 8 * 4);
 }
 
 TEST(Minkowski, BoxCornersGiveEquationBlocka) {
