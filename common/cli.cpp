@@ -1,10 +1,12 @@
 #include "common/cli.hpp"
 
 #include "common/error.hpp"
+#include "common/h5/file.hpp"
 #include "common/version.hpp"
 
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <iostream>
 
 namespace aniso::cli {
@@ -92,6 +94,13 @@ int run(int argc, char** argv, const std::string& program,
   // on SIGTERM is agreed by all ranks (stop_requested), so they finish MPI normally.
   if (code != 0 && code != static_cast<int>(ExitCode::interrupted) && comm.size() > 1)
     MPI_Abort(MPI_COMM_WORLD, code);
+  // A file whose close failed (disk full) would crash HDF5's own shutdown inside MPI_Finalize;
+  // the error is reported and every temporary removed by now, so end here with its code.
+  if (code != 0 && h5::library_holds_a_failed_file()) {
+    std::cout.flush();
+    std::cerr.flush();
+    std::_Exit(code);
+  }
   return code;
 }
 

@@ -30,6 +30,8 @@ std::string hdf5_detail() {
   std::string text;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, first_description, &text);
   H5Eclear2(H5E_DEFAULT);
+  // Some HDF5 messages (a failed write's errno report) span lines; keep the error on one.
+  std::replace(text.begin(), text.end(), '\n', ' ');
   return text;
 }
 
@@ -578,6 +580,12 @@ std::vector<T> Group::read_dataset(const std::string& child, const Dims& expecte
 }
 
 // ---- File
+
+bool library_holds_a_failed_file() {
+  // Every File closes its identifier when it goes out of scope, so one still counted after the
+  // stage's body has returned is a file whose close failed.
+  return H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE) > 0;
+}
 
 File File::create(const std::string& path) {
   silence_hdf5();

@@ -33,6 +33,11 @@ concept Element = std::same_as<T, double> || std::same_as<T, std::int64_t> ||
 /// Dataset dimensions, slowest first; empty for a scalar.
 using Dims = std::vector<hsize_t>;
 
+/// True while the HDF5 library still holds a file that failed to close (a write that failed, disk
+/// full): HDF5 would close it again when MPI finalizes, and crashes there, so the process must
+/// then end without MPI_Finalize (cli::run does).
+bool library_holds_a_failed_file();
+
 /// "[4, 3]" for messages.
 std::string format_dims(const Dims& dims);
 
