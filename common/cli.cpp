@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 namespace aniso::cli {
@@ -102,6 +103,19 @@ int run(int argc, char** argv, const std::string& program,
     std::_Exit(code);
   }
   return code;
+}
+
+void require_output_is_not_an_input(const std::string& output, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  for (const std::string& input : inputs) {
+    std::error_code error;
+    const bool same = fs::exists(output, error)
+                          ? fs::equivalent(output, input, error)
+                          : fs::weakly_canonical(output, error) == fs::weakly_canonical(input, error);
+    require_input(!same, "output '" + output + "' is the input '" + input +
+                             "': writing it would replace the input; "
+                             "choose another --output");
+  }
 }
 
 } // namespace aniso::cli

@@ -53,4 +53,8 @@ int run(int argc, char** argv, const std::string& program,
 /// argv joined with spaces.
 std::string join_command_line(int argc, char** argv);
 
+/// InputError naming both when an output path is one of the inputs (the same file under any
+/// spelling, links included): writing it would replace the input.
+void require_output_is_not_an_input(const std::string& output, const std::vector<std::string>& inputs);
+
 } // namespace aniso::cli

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace aniso::dem {
 
@@ -74,7 +75,12 @@ void History::truncate_after_step(double step) {
     column.resize(keep);
 }
 
-void History::write(const std::string& folder, const h5::Provenance& provenance) const {
+double History::last_step() const {
+  return columns_[0].empty() ? std::numeric_limits<double>::quiet_NaN() : columns_[0].back();
+}
+
+void History::write(const std::string& folder, const h5::Provenance& provenance,
+                    std::int64_t covers_step) const {
   const auto& names = history_columns();
   {
     h5::AtomicFile atomic(folder + "/history.h5");
@@ -82,6 +88,8 @@ void History::write(const std::string& folder, const h5::Provenance& provenance)
       h5::File file = h5::File::create(atomic.temp_path());
       file.write_attribute("schema", std::string_view("aniso-history"));
       file.write_attribute("schema_version", std::int64_t{3});
+      if (!run_id_.empty()) file.write_attribute("run_id", run_id_);
+      file.write_attribute("covers_step", covers_step);
       h5::Group group = file.create_group("history");
       for (std::size_t c = 0; c < names.size(); ++c) {
         group.write_dataset<double>(names[c].name, columns_[c], {columns_[c].size()}, names[c].unit,
@@ -115,6 +123,9 @@ History History::read(const std::string& folder) {
   h5::File file = h5::File::open(path);
   const h5::Group group = file.open_group("history");
   History history;
+  if (file.has_attribute("run_id")) history.run_id_ = file.read_string_attribute("run_id");
+  if (file.has_attribute("covers_step"))
+    history.covers_step_ = file.read_attribute<std::int64_t>("covers_step");
   const auto& names = history_columns();
   const auto n_rows = group.open_dataset("step").read<double>().size();
   for (std::size_t c = 0; c < names.size(); ++c)

@@ -128,6 +128,42 @@ void require_resume_matches(const Simulation& simulation, const DemConfig& confi
                             mismatches));
 }
 
+// The history a resumed run continues must be its own and reach the checkpoint: another run's
+// history would be truncated and mixed in, and a shorter one would leave a silent gap.
+void require_history_continues(const History& history, const std::string& run_id, double step,
+                               const std::string& output_dir, const Logger& logger) {
+  const std::string path = output_dir + "/history.h5";
+  if (run_id.empty() && history.run_id().empty()) {
+    logger->warn("load --resume: the checkpoint and {} carry no run id (written before run ids); only the "
+                 "steps are checked",
+                 path);
+  } else {
+    require_input(!run_id.empty(),
+                  fmt::format("load --resume: the input is not a checkpoint of a loading run "
+                              "(no run_id), but {} belongs to run {}",
+                              path, history.run_id()));
+    require_input(
+        history.run_id() == run_id,
+        fmt::format("load --resume: {} belongs to loading run '{}', the input checkpoint to run '{}': "
+                    "resume into that run's own folder (dem.output_dir)",
+                    path, history.run_id().empty() ? "(none)" : history.run_id(), run_id));
+  }
+  require_input(
+      history.size() > 0 && step > history.column("step").front(),
+      fmt::format("load --resume: the input is at the first step of {} ({}), the prepared assembly, not "
+                  "a load checkpoint: start a loading without --resume",
+                  path, step));
+  // covers_step: the step at which the history was written, right after each checkpoint; files
+  // written before it existed are checked on their last row only.
+  const double covered =
+      history.covers_step() >= 0 ? static_cast<double>(history.covers_step()) : history.last_step();
+  require_input(covered >= step,
+                fmt::format("load --resume: {} reaches step {}, before the input checkpoint's step {} (the "
+                            "run stopped between writing the two): resume from an earlier checkpoint that "
+                            "the history reaches",
+                            path, covered, step));
+}
+
 } // namespace
 
 std::string load_checkpoint_path(const std::string& folder, std::size_t index) {
@@ -155,17 +191,26 @@ void start_loading(Simulation& simulation, const DemConfig& config) {
 }
 
 LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
-                        const h5::Provenance& provenance, const Logger& logger, bool resuming) {
+                        const h5::Provenance& provenance, const Logger& logger, bool resuming,
+                        const std::string& run_id) {
   const auto& load = config.load;
   const auto start_wall = std::chrono::steady_clock::now();
   History history;
   if (resuming) {
-    require_resume_matches(simulation, config);
     history = History::read(output_dir);
+    require_history_continues(history, run_id, static_cast<double>(simulation.step_count()), output_dir,
+                              logger);
+    require_resume_matches(simulation, config);
     history.truncate_after_step(static_cast<double>(simulation.step_count()));
   } else {
+    history.set_run_id(run_id);
     history.append(history_row(simulation, config));
   }
+  const auto checkpoint_of_run = [&] {
+    h5::Checkpoint checkpoint = to_checkpoint(simulation, config.particles.d50, {});
+    checkpoint.run_id = run_id;
+    return checkpoint;
+  };
   LoadSummary summary;
   const std::int64_t start_step = simulation.step_count();
   double next_history =
@@ -225,9 +270,9 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
       }
       // The log reports the ratios measured for the file: simulation.equilibrium() is stale
       // when equilibrium is not watched (no relaxation at checkpoints).
-      const h5::Checkpoint checkpoint = to_checkpoint(simulation, config.particles.d50, {});
+      const h5::Checkpoint checkpoint = checkpoint_of_run();
       h5::write_checkpoint(path, checkpoint, provenance, simulation.comm());
-      if (simulation.comm().is_root()) history.write(output_dir, provenance);
+      if (simulation.comm().is_root()) history.write(output_dir, provenance, simulation.step_count());
       logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
                    "ratio {:.2e}, kinetic/elastic {:.2e})",
                    next_checkpoint, strain, path, mean_stress_compression_positive(simulation.stress()),
@@ -242,8 +287,7 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
     if (simulation.step_count() % simulation.settings().control_interval == 0 &&
         stop_requested(simulation.comm())) {
       summary.interrupted_checkpoint = output_dir + "/load_interrupted.h5";
-      h5::write_checkpoint(summary.interrupted_checkpoint,
-                           to_checkpoint(simulation, config.particles.d50, {}), provenance,
+      h5::write_checkpoint(summary.interrupted_checkpoint, checkpoint_of_run(), provenance,
                            simulation.comm());
       logger->warn("load: stopped on SIGTERM at strain {:.6g} (step {}): wrote {}; continue with --input {} "
                    "--resume",
@@ -252,7 +296,7 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
       break;
     }
   }
-  if (simulation.comm().is_root()) history.write(output_dir, provenance);
+  if (simulation.comm().is_root()) history.write(output_dir, provenance, simulation.step_count());
   simulation.comm().barrier(); // the history is on disk before anyone reports success
   const auto& ratio = history.column("stress_ratio");
   const auto& strain_11 = history.column("strain_11");

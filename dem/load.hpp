@@ -31,9 +31,12 @@ struct LoadSummary {
 void start_loading(Simulation& simulation, const DemConfig& config);
 
 /// Runs from the simulation's current strain to the final strain, writing checkpoints
-/// (load_NNN.h5 in output_dir, NNN = index in checkpoint_strains) and the history.
+/// (load_NNN.h5 in output_dir, NNN = index in checkpoint_strains) and the history, each marked
+/// with run_id. Resuming, run_id is the input checkpoint's: the history.h5 in output_dir must
+/// belong to the same run and reach the checkpoint's step (InputError naming both otherwise).
 LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
-                        const h5::Provenance& provenance, const Logger& logger, bool resuming);
+                        const h5::Provenance& provenance, const Logger& logger, bool resuming,
+                        const std::string& run_id = {});
 
 /// Path of checkpoint number `index` in `folder`.
 std::string load_checkpoint_path(const std::string& folder, std::size_t index);

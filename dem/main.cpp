@@ -9,6 +9,7 @@
 #include "dem/io.hpp"
 #include "dem/load.hpp"
 #include "dem/prepare.hpp"
+#include "dem/run_folder.hpp"
 
 #include <fmt/format.h>
 
@@ -65,7 +66,11 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   hold->fallthrough();
   load->add_option("--input", input, "prepared assembly, or with --resume a load checkpoint (HDF5)")
       ->required();
+  bool overwrite = false;
   load->add_flag("--resume", resume, "continue a loading run from one of its checkpoints");
+  load->add_flag(
+      "--overwrite", overwrite,
+      "replace the loading run already in dem.output_dir (its history and load_NNN.h5 are removed)");
   prepare->fallthrough();
   load->fallthrough();
   if (auto code = cli::parse(app, argc, argv, comm)) return *code;
@@ -83,11 +88,14 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
     logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->particles.size(),
                  checkpoint->contacts.size(), checkpoint->step);
   }
+  require_input(!(resume && overwrite), "load: --resume continues the run in dem.output_dir and --overwrite "
+                                        "replaces it; give one of them");
   logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
   if (options.dry_run) return 0;
 
   if (hold->parsed()) return run_hold(*checkpoint, input, hold_steps, hold_csv, max_drift, logger, comm);
   std::filesystem::create_directories(config.output_dir);
+  const dem::RunFolderLock lock(config.output_dir, comm); // one writer per folder
   const std::string command = cli::join_command_line(argc, argv);
   if (prepare->parsed()) {
     const auto provenance = h5::make_provenance("aniso-dem prepare", reader.effective_toml(), command, comm);
@@ -103,10 +111,14 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   }
   const auto provenance = h5::make_provenance("aniso-dem load", reader.effective_toml(), command, comm);
   dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input, comm);
-  if (!resume) dem::start_loading(simulation, config);
+  if (!resume) {
+    dem::clear_for_fresh_loading(config.output_dir, overwrite, input, comm);
+    dem::start_loading(simulation, config);
+  }
+  const std::string run_id = resume ? checkpoint->run_id : dem::new_run_id(comm);
   install_stop_handler();
   const dem::LoadSummary summary =
-      dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume);
+      dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume, run_id);
   if (!summary.interrupted_checkpoint.empty()) return static_cast<int>(ExitCode::interrupted);
   logger->info("load done: strain {:.4g} in {} steps ({} relaxing before checkpoints), {:.1f} s wall ({:.3g} "
                "particle-steps/s); peak stress ratio {:.4f} at strain {:.4g}",

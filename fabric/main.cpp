@@ -60,6 +60,14 @@ int run_fabric(int argc, char** argv, const mpi::Comm& comm) {
     require_input(inputs.size() >= 3,
                   "series needs at least 3 checkpoints to correlate, got " + std::to_string(inputs.size()));
   if (output.empty()) output = config.output_dir + (is_series ? "/fabric_series.h5" : "/fabric.h5");
+  {
+    std::vector<std::string> every_input = inputs;
+    for (const auto* list : {&probes, &permeabilities, &voids})
+      every_input.insert(every_input.end(), list->begin(), list->end());
+    cli::require_output_is_not_an_input(output, every_input);
+    cli::require_output_is_not_an_input(std::filesystem::path(output).replace_extension(".csv").string(),
+                                        every_input);
+  }
 
   const auto start = std::chrono::steady_clock::now();
   std::vector<fabric::FabricMeasures> measures;

@@ -2,7 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/h5/atomic_write.hpp"
-#include "fabric/root_only.hpp"
+#include "common/root_only.hpp"
 #include "fabric/summary.hpp"
 
 #include <filesystem>

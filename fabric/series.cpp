@@ -4,7 +4,7 @@
 #include "common/h5/atomic_write.hpp"
 #include "fabric/output.hpp"
 #include "fabric/pearson.hpp"
-#include "fabric/root_only.hpp"
+#include "common/root_only.hpp"
 
 #include <filesystem>
 #include <fstream>

@@ -29,9 +29,11 @@ checkpoint stops with a message naming the key and the value.
 `load-input` resumes from the newest checkpoint of this run that history.h5
 already covers (history.h5 is rewritten just after each checkpoint, so a kill
 between the two leaves the newer checkpoint uncovered) and that is newer than
-prepared.h5 and the config; otherwise it starts from prepared.h5.
+prepared.h5 and the config; otherwise it starts from prepared.h5, with --overwrite
+when files of an earlier (stale) loading run are there.
 """
 import os
+import re
 import subprocess
 import sys
 import tomllib
@@ -158,11 +160,24 @@ def usable_stages(bin_dir):
     return usable
 
 
+def loading_run_files(out):
+    """The files of a loading run in OUT (what `aniso-dem load` refuses to replace without --overwrite)."""
+    names = os.listdir(out) if os.path.isdir(out) else []
+    return sorted(n for n in names if re.fullmatch(r"history\.(h5|csv)|load_(\d{3,}|interrupted)\.h5", n))
+
+
 def load_input(out, config):
     prepared = os.path.join(out, "prepared.h5")
     history = os.path.join(out, "history.h5")
     start = ["--input", prepared]
+    stale = loading_run_files(out)
+    if stale:
+        # make reruns the load because its inputs changed or it never got far: the run there is
+        # stale, and the new one replaces it (aniso-dem refuses that without --overwrite).
+        start = start + ["--overwrite"]
     if not os.path.exists(history):
+        if stale:
+            print(f"campaign: starting the load afresh, replacing {', '.join(stale)}", file=sys.stderr)
         return start
     oldest_allowed = max(os.path.getmtime(prepared), os.path.getmtime(config))
     history_time = os.path.getmtime(history)
@@ -185,6 +200,7 @@ def load_input(out, config):
         if oldest_allowed <= written <= history_time and (newest is None or written > os.path.getmtime(newest)):
             newest = interrupted
     if newest is None:
+        print(f"campaign: starting the load afresh, replacing {', '.join(stale)}", file=sys.stderr)
         return start
     print(f"campaign: resuming the interrupted load from {newest}", file=sys.stderr)
     return ["--input", newest, "--resume"]

@@ -276,6 +276,7 @@ std::vector<char> shared_state_bytes(const Checkpoint& checkpoint, const Provena
   append_raw(&checkpoint.time, sizeof checkpoint.time);
   append_raw(&checkpoint.step, sizeof checkpoint.step);
   append_raw(&checkpoint.time_step, sizeof checkpoint.time_step);
+  append_string(checkpoint.run_id);
   const CellState& cell = checkpoint.cell;
   for (const Vec3* vector :
        {&cell.lengths, &cell.reference_lengths, &cell.strain_rate, &cell.target, &cell.servo_state})
@@ -401,6 +402,7 @@ void write_content(File& file, const Checkpoint& local, const Provenance& proven
     file.write_attribute_with_units("unbalanced_force_ratio", local.unbalanced_force_ratio, "1");
   if (std::isfinite(local.kinetic_elastic_ratio))
     file.write_attribute_with_units("kinetic_elastic_ratio", local.kinetic_elastic_ratio, "1");
+  if (!local.run_id.empty()) file.write_attribute("run_id", local.run_id);
 
   {
     const CellState& cell = local.cell;
@@ -524,6 +526,7 @@ Checkpoint read_file(const std::string& path) {
     checkpoint.unbalanced_force_ratio = file.read_attribute<double>("unbalanced_force_ratio");
   if (file.has_attribute("kinetic_elastic_ratio"))
     checkpoint.kinetic_elastic_ratio = file.read_attribute<double>("kinetic_elastic_ratio");
+  if (file.has_attribute("run_id")) checkpoint.run_id = file.read_string_attribute("run_id");
 
   {
     const Group group = file.open_group("cell");

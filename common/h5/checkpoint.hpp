@@ -89,6 +89,9 @@ struct Checkpoint {
   /// energy of the fluctuating motion over the elastic energy of the contacts.
   double unbalanced_force_ratio = std::numeric_limits<double>::quiet_NaN();
   double kinetic_elastic_ratio = std::numeric_limits<double>::quiet_NaN();
+  /// The loading run that wrote this checkpoint (root attribute run_id; empty for a prepared
+  /// assembly and for files written before run ids): --resume checks it against history.h5.
+  std::string run_id;
 };
 
 /// Writes a checkpoint atomically (temporary name, flush, rename), collectively on `comm`.

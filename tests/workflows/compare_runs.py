@@ -46,6 +46,7 @@ def same_value(a, b, root_a, root_b):
 NOT_RESULTS = {
     "source_hash": "a hash of the input file's bytes, whose /provenance holds a date",
     "seconds": "the wall time of a run (aniso-lbm's /permeability/runs/seconds)",
+    "run_id": "names one loading run (date and random bits): two runs of one config get two",
 }
 
 

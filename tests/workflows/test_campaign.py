@@ -90,12 +90,18 @@ class LoadInput(unittest.TestCase):
         touch(f"{self.out}/load_000.h5", 900)
         touch(f"{self.out}/history.h5", 950)
         touch(self.config, 1000)
-        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5"])
+        arguments, log = self.load_input()
+        self.assertEqual(arguments, ["--input", f"{self.out}/prepared.h5", "--overwrite"])
+        self.assertIn("replacing history.h5, load_000.h5", log)
 
     def test_checkpoints_older_than_the_prepared_assembly_are_not_resumed(self):
         touch(f"{self.out}/load_000.h5", 1050)
         touch(f"{self.out}/history.h5", 1060)
-        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5"])
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5", "--overwrite"])
+
+    def test_a_load_killed_before_its_first_history_is_replaced(self):
+        touch(f"{self.out}/load_000.h5", 1200)  # no history.h5 yet: nothing to resume
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5", "--overwrite"])
 
 
 class Stages(unittest.TestCase):

@@ -1,4 +1,4 @@
-#include "fabric/root_only.hpp"
+#include "common/root_only.hpp"
 
 #include "common/error.hpp"
 
@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace aniso::fabric {
+namespace aniso {
 
 void run_on_root(const mpi::Comm& comm, const std::function<void()>& body) {
   std::string failure; // first byte: exit code; the rest: the message
@@ -25,4 +25,4 @@ void run_on_root(const mpi::Comm& comm, const std::function<void()>& body) {
   throw Error(static_cast<ExitCode>(bytes[0]), std::string(bytes.begin() + 1, bytes.end()));
 }
 
-} // namespace aniso::fabric
+} // namespace aniso

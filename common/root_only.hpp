@@ -6,10 +6,10 @@
 
 #include <functional>
 
-namespace aniso::fabric {
+namespace aniso {
 
 /// Runs body on rank 0 only; collective. Rethrows rank 0's aniso::Error (or an internal error
 /// for any other exception) on every rank.
 void run_on_root(const mpi::Comm& comm, const std::function<void()>& body);
 
-} // namespace aniso::fabric
+} // namespace aniso

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Output folders keep one run each (issue 22): a fresh load refuses a folder that holds another
+# loading run unless --overwrite (which never removes its own input); --resume refuses another
+# run's history, a prepared assembly, and a checkpoint beyond what the history reaches; a
+# second writer is refused while the first holds the folder's lock; aniso-fabric refuses to
+# write its results over its input. Each refusal: exit 2, a message naming the problem, and no
+# file of the earlier run changed.
+#
+# usage: run_folder.sh BUILD_DIR WORK_DIR
+set -euo pipefail
+build=$1 work=$2
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+dem=$build/dem/aniso-dem
+settings=(--set dem.particles.count=200 --set dem.seed=4 --set dem.prepare.cycles=1
+          --set dem.prepare.void_ratio_tolerance=1 --set dem.equilibrium.tolerance=1e-3
+          --set dem.prepare.initial_solid_fraction=0.35 --set dem.equilibrium.at_checkpoints=false
+          --set dem.load.final_strain=0.004 --set 'dem.load.checkpoint_strains=[0.001, 0.002, 0.004]'
+          --set dem.load.history_interval=1e-4 --log-level warn)
+"$dem" prepare "${settings[@]}" --set dem.output_dir=prep
+"$dem" load "${settings[@]}" --set dem.output_dir=A --input prep/prepared.h5
+"$dem" load "${settings[@]}" --set dem.output_dir=B --input prep/prepared.h5
+sums_before=$(md5sum A/* B/*)
+status=0
+
+# expect NAME PATTERN COMMAND...: exit 2 with PATTERN in the output.
+expect() {
+  local name=$1 pattern=$2
+  shift 2
+  set +e
+  "$@" >"$name.log" 2>&1
+  local code=$?
+  set -e
+  if [ "$code" != 2 ] || ! grep -q -- "$pattern" "$name.log"; then
+    echo "FAIL: $name: exit $code (expected 2) or no '$pattern' in:"
+    cat "$name.log"
+    status=1
+  fi
+}
+
+expect fresh_into_a_run "already holds a loading run" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=A --input prep/prepared.h5
+expect overwrite_own_input "is a file of the run it would remove" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=A --input A/load_001.h5 --overwrite
+expect resume_and_overwrite "give one of them" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=A --input A/load_001.h5 --resume --overwrite
+expect resume_a_prepared_assembly "not a checkpoint of a loading run" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=A --input prep/prepared.h5 --resume
+expect resume_into_another_run "belongs to loading run" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=B --input A/load_001.h5 --resume
+expect second_writer "another aniso-dem" \
+  flock A/.aniso-dem.lock "$dem" load "${settings[@]}" --set dem.output_dir=A --input A/load_001.h5 --resume
+expect fabric_over_its_input "writing it would replace the input" \
+  "$build/fabric/aniso-fabric" --input A/load_002.h5 --output ./A/../A/load_002.h5
+if [ "$(md5sum A/* B/*)" != "$sums_before" ]; then
+  echo "FAIL: a refused command changed a file of run A or B"
+  status=1
+fi
+
+# A history that stops short of the checkpoint (the run ended before reaching it) is refused.
+cp -r A short
+"$dem" load "${settings[@]}" --set dem.output_dir=short --input short/load_000.h5 --resume \
+  --set dem.load.final_strain=0.0015 --set 'dem.load.checkpoint_strains=[0.001]'
+expect resume_beyond_the_history "before the input checkpoint's step" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=short --input A/load_002.h5 --resume
+
+# --overwrite replaces the run: the old files go, a new run id is written.
+old_id=$(h5dump -a run_id A/history.h5 | grep -o '"[^"]*"' | tail -1)
+"$dem" load "${settings[@]}" --set dem.output_dir=A --input prep/prepared.h5 --overwrite
+new_id=$(h5dump -a run_id A/history.h5 | grep -o '"[^"]*"' | tail -1)
+checkpoint_id=$(h5dump -a run_id A/load_002.h5 | grep -o '"[^"]*"' | tail -1)
+if [ "$old_id" = "$new_id" ] || [ "$checkpoint_id" != "$new_id" ]; then
+  echo "FAIL: --overwrite: history run id $old_id -> $new_id, checkpoint $checkpoint_id"
+  status=1
+fi
+[ "$status" = 0 ] && echo "output folders: every refusal exit 2 with its message, no file changed; --overwrite replaced the run"
+exit "$status"
