@@ -176,6 +176,7 @@ void start_loading(Simulation& simulation, const DemConfig& config) {
                                                       config.load.mean_stress);
   simulation.reset_reference_lengths();
   simulation.set_time_step(configured_time_step(simulation, config));
+  require_reachable_strain(config.load.final_strain, rate, simulation.settings().time_step, "load");
   simulation.set_control_interval(config.integration.control_interval, config.integration.servo_gain);
   simulation.set_friction(config.material.friction);
   simulation.set_damping(config.integration.damping);

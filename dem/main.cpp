@@ -10,6 +10,7 @@
 #include "dem/load.hpp"
 #include "dem/prepare.hpp"
 #include "dem/run_folder.hpp"
+#include "dem/settings.hpp"
 
 #include <fmt/format.h>
 
@@ -112,8 +113,14 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const auto provenance = h5::make_provenance("aniso-dem load", reader.effective_toml(), command, comm);
   dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input, comm);
   if (!resume) {
+    dem::start_loading(simulation,
+                       config); // refuses a loading that would never end: before removing anything
     dem::clear_for_fresh_loading(config.output_dir, overwrite, input, comm);
-    dem::start_loading(simulation, config);
+    if (config.load.inertial_number > dem::quasi_static_inertial_number)
+      logger->warn("dem.load.inertial_number = {:g} is above {:g}: the loading is not quasi-static (inertia "
+                   "carries part of the stress, the servo lags, the results depend on the rate; "
+                   "docs/methods/dem.md, rate convergence)",
+                   config.load.inertial_number, dem::quasi_static_inertial_number);
   }
   const std::string run_id = resume ? checkpoint->run_id : dem::new_run_id(comm);
   install_stop_handler();

@@ -251,6 +251,8 @@ public:
     const auto& pc = config.particles;
     rate_ = strain_rate_for_inertial_number(config.prepare.inertial_number, pc.d50, pc.density,
                                             config.prepare.confining_pressure);
+    // Compaction to the target takes a volumetric strain of order one.
+    require_reachable_strain(0.3, rate_, sparse_.settings().time_step, "prepare");
     rms_speed_ = config.prepare.agitation_speed * std::sqrt(config.prepare.confining_pressure / pc.density);
     logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction "
                  "rate {:.3g} /s",

@@ -1,7 +1,10 @@
 #include "dem/settings.hpp"
 
+#include "common/error.hpp"
 #include "dem/integrator.hpp"
 #include "dem/particle_shape.hpp"
+
+#include <fmt/format.h>
 
 #include <cmath>
 
@@ -33,6 +36,15 @@ SimulationSettings settings_from_config(const DemConfig& config, double smallest
 double strain_rate_for_inertial_number(double inertial_number, double d50, double density,
                                        double mean_stress) {
   return inertial_number / (d50 * std::sqrt(density / mean_stress));
+}
+
+void require_reachable_strain(double strain, double rate, double time_step, const std::string& what) {
+  const double steps = strain / (rate * time_step);
+  require_input(
+      steps <= max_run_steps,
+      fmt::format("{}: a strain of {:.3g} at {:.3g} /s with a time step of {:.3g} s takes {:.3g} steps "
+                  "(more than {:.0e}): the stress or the inertial number that sets the rate is too small",
+                  what, strain, rate, time_step, steps, max_run_steps));
 }
 
 } // namespace aniso::dem

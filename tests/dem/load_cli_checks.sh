@@ -9,6 +9,9 @@
 # 3. A fresh load applies the configured time step (it once kept the prepared file's).
 # 4. A run resumed under another default time step is refused, and resumes when given back
 #    the stored step exactly as the refusal prints it (a run begun before the defaults changed).
+# 5. A mean stress of 1e-300 Pa (a rate of 1e-151 /s) is refused before anything runs, where
+#    it once ran forever; an inertial number of 0.9 runs with a warning that it is not
+#    quasi-static (issue 22).
 #
 # usage: load_cli_checks.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -103,5 +106,24 @@ else
   else
     echo "FAIL: resumed with the stored step $stored s, the final checkpoint differs"; status=1
   fi
+fi
+# 5. Loadings that would never end are refused; a non-quasi-static one is warned about.
+set +e
+"$build/dem/aniso-dem" load "${settings[@]}" --set dem.output_dir="$work/tiny" --set dem.load.mean_stress=1e-300 \
+  --input "$work/prepared.h5" > "$work/tiny.log" 2>&1
+code=$?
+set -e
+if [ $code != 2 ] || ! grep -q "takes .* steps (more than 1e+09)" "$work/tiny.log" || [ -e "$work/tiny/history.h5" ]; then
+  echo "FAIL: a load at 1e-300 Pa exited $code:"; tail -3 "$work/tiny.log"; status=1
+else
+  echo "load at 1e-300 Pa: refused with exit 2 before running"
+fi
+"$build/dem/aniso-dem" load "${settings[@]}" --set dem.output_dir="$work/fast" --set dem.load.inertial_number=0.9 \
+  --set dem.load.final_strain=0.001 --set 'dem.load.checkpoint_strains=[0.001]' --input "$work/prepared.h5" \
+  > "$work/fast.log" 2>&1
+if ! grep -q "warning dem.load.inertial_number = 0.9 is above 0.01: the loading is not quasi-static" "$work/fast.log"; then
+  echo "FAIL: no warning for an inertial number of 0.9:"; tail -3 "$work/fast.log"; status=1
+else
+  echo "load at I = 0.9: warned that it is not quasi-static"
 fi
 exit $status
