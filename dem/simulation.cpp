@@ -161,10 +161,34 @@ void Simulation::restore_stress() {
   equilibrium_ = measure_equilibrium(particles_, neighbors_, comm());
 }
 
+double Simulation::geometric_overlap(std::uint32_t i, std::uint32_t j, const Vec3& guess) const {
+  const Vec3 d = PeriodicCell::minimum_image_of_wrapped(particles_.position[j] - particles_.position[i],
+                                                        cell_.lengths());
+  const double radius_sum = particles_.radius[i] + particles_.radius[j];
+  if (d.squaredNorm() >= radius_sum * radius_sum) return radius_sum - d.norm();
+  if (particles_.aspect_ratio[i] == 1.0 && particles_.aspect_ratio[j] == 1.0) return radius_sum - d.norm();
+  PairProperties properties;
+  properties.effective_radius = particles_.radius[i] * particles_.radius[j] / radius_sum;
+  const ConvexBody a =
+      shapes_.body(particles_.radius[i], particles_.aspect_ratio[i], particles_.orientation[i]);
+  const ConvexBody b =
+      shapes_.body(particles_.radius[j], particles_.aspect_ratio[j], particles_.orientation[j]);
+  return ovoid_pair_geometry(a, b, d, guess.isZero(0.0) ? d : guess, properties, contact_input(), false)
+      .contact.overlap;
+}
+
 void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::string& path) {
   std::unordered_map<std::uint64_t, std::uint32_t> local;
   for (std::uint32_t k = 0; k < particles_.size(); ++k)
     local.emplace(particles_.id[k], k);
+  // Each stored contact must be the one its particles' positions give (an edited or damaged
+  // file otherwise restarts with forces the geometry does not have), and every overlapping pair
+  // must have its row (a dropped row would come back without its tangential force). The file
+  // was written from these very positions, so the overlaps agree to the narrow phase's round-off.
+  const auto tolerance = [&](std::uint32_t i, std::uint32_t j, double overlap) {
+    return 1e-6 * std::abs(overlap) + 1e-9 * (particles_.radius[i] + particles_.radius[j]);
+  };
+  std::vector<char> restored(neighbors_.pairs().size(), 0);
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const auto found_i = local.find(contacts.particles[c][0]);
     const auto found_j = local.find(contacts.particles[c][1]);
@@ -177,6 +201,14 @@ void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::st
           fmt::format("checkpoint '{}': contact ({}, {}) is not within reach of the restored positions", path,
                       contacts.particles[c][0], contacts.particles[c][1]));
     }
+    const double geometric = geometric_overlap(i, j, contacts.normal[c]);
+    if (!(std::abs(geometric - contacts.overlap[c]) <= tolerance(i, j, contacts.overlap[c]))) {
+      throw FileError(fmt::format(
+          "checkpoint '{}': contact ({}, {}) stores an overlap of {:.6g} m where the stored "
+          "positions give {:.6g} m (the file was edited or damaged)",
+          path, contacts.particles[c][0], contacts.particles[c][1], contacts.overlap[c], geometric));
+    }
+    restored[static_cast<std::size_t>(k)] = 1;
     auto& record = neighbors_.records()[static_cast<std::size_t>(k)];
     const Vec3& lengths = cell_.lengths();
     record.normal = contacts.normal[c];
@@ -198,6 +230,17 @@ void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::st
     history.tangential_force = contacts.tangential_force[c];
     history.sliding = contacts.sliding[c] != 0;
     if (!spheres) history.normal = contacts.normal[c];
+  }
+  for (std::size_t k = 0; k < restored.size(); ++k) {
+    const auto [i, j] = neighbors_.pairs()[k];
+    if (restored[k] || (i >= particles_.n_owned && j >= particles_.n_owned)) continue;
+    const double geometric = geometric_overlap(i, j, Vec3::Zero());
+    if (geometric > tolerance(i, j, geometric)) {
+      throw FileError(
+          fmt::format("checkpoint '{}': particles {} and {} overlap by {:.6g} m in the stored positions, "
+                      "but /contacts has no row for them (a row was dropped, or the file was edited)",
+                      path, particles_.id[i], particles_.id[j], geometric));
+    }
   }
 }
 

@@ -53,6 +53,9 @@ public:
   [[nodiscard]] StateMeasures measure() const;
   /// Restores contact history and per-pair records of the pairs this rank holds (after a restart).
   void restore_contacts(const h5::ContactRows& contacts, const std::string& path);
+  /// Overlap of particles i and j (local indices) at the present positions, by the force pass's
+  /// narrow phase (< 0: apart); guess is the normal an ovoid pair's iteration starts from.
+  [[nodiscard]] double geometric_overlap(std::uint32_t i, std::uint32_t j, const Vec3& guess) const;
   /// Recomputes the stress from restored contact records (after a restart; collective).
   void restore_stress();
   [[nodiscard]] const mpi::Comm& comm() const { return domain_.comm(); }
