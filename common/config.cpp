@@ -94,13 +94,25 @@ void Reader::remember(std::string_view key, std::string value_toml, std::string_
       {std::string(key), std::move(value_toml), std::string(unit), std::move(allowed), std::string(help)});
 }
 
+void Reader::replace(std::string_view key, std::string value_toml, std::string_view note) {
+  for (Entry& entry : entries_) {
+    if (entry.key != key) continue;
+    entry.value_toml = std::move(value_toml);
+    entry.help = std::string(note) + "; " + entry.help;
+    return;
+  }
+  throw Error(ExitCode::internal_error, fmt::format("config key '{}' replaced before it was read", key));
+}
+
 double Reader::real(std::string_view key, double fallback, std::string_view unit, Range range,
                     std::string_view help) {
   const toml::node* node = find(key);
   const double value = node ? as_real(*node, key, source_) : fallback;
   if (!range.contains(value)) {
-    throw InputError(fmt::format("config key '{}' in {}: value {} {} is out of range, expected {} ({})", key,
-                                 node ? source_ : "defaults", format_real(value), unit, range.describe(),
+    // A dimensionless unit ("1") would read as a second number: "value 0.7 1 is out of range".
+    const std::string with_unit = unit.empty() || unit == "1" ? "" : " " + std::string(unit);
+    throw InputError(fmt::format("config key '{}' in {}: value {}{} is out of range, expected {} ({})", key,
+                                 node ? source_ : "defaults", format_real(value), with_unit, range.describe(),
                                  help));
   }
   remember(key, format_real(value), unit, range.describe(), help);

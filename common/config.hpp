@@ -59,6 +59,12 @@ public:
   /// The effective configuration (every key read, with defaults filled in) as commented TOML.
   [[nodiscard]] std::string effective_toml() const;
 
+  /// True when the table (the config file or a --set) gives this key.
+  [[nodiscard]] bool given(std::string_view key) const { return find(key) != nullptr; }
+  /// Records another value for a key already read (one that an input file fixes), with a note
+  /// on where it came from, so that the effective configuration says what was used.
+  void replace(std::string_view key, std::string value_toml, std::string_view note);
+
 private:
   struct Entry {
     std::string key;

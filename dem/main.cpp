@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "common/stop_request.hpp"
+#include "dem/checkpoint_keys.hpp"
 #include "dem/config.hpp"
 #include "dem/hold.hpp"
 #include "dem/io.hpp"
@@ -79,7 +80,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const auto source = cli::load_config(options);
   config::Reader reader(source.table, source.name);
   reader.tolerate_sections({"fabric", "probe", "voxel", "lbm", "workflow"});
-  const dem::DemConfig config = dem::read_dem_config(reader);
+  dem::DemConfig config = dem::read_dem_config(reader);
   if (cli::finish_config(reader, options, comm)) return 0;
   const Logger logger = make_logger("aniso-dem", comm, options.log_level);
 
@@ -88,6 +89,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
     checkpoint = h5::read_checkpoint(input, comm);
     logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->particles.size(),
                  checkpoint->contacts.size(), checkpoint->step);
+    dem::adopt_checkpoint_values(config, reader, *checkpoint, input);
   }
   require_input(!(resume && overwrite), "load: --resume continues the run in dem.output_dir and --overwrite "
                                         "replaces it; give one of them");

@@ -12,6 +12,9 @@
 # 5. A mean stress of 1e-300 Pa (a rate of 1e-151 /s) is refused before anything runs, where
 #    it once ran forever; an inertial number of 0.9 runs with a warning that it is not
 #    quasi-static (issue 22).
+# 6. Keys that the checkpoint fixes (particle count, shear modulus, explosion overlap, ...) given
+#    with other values are refused naming each; the values used are the file's, and provenance
+#    records them (it once recorded the configured 500 particles for a 200-particle file).
 #
 # usage: load_cli_checks.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -125,5 +128,23 @@ if ! grep -q "warning dem.load.inertial_number = 0.9 is above 0.01: the loading 
   echo "FAIL: no warning for an inertial number of 0.9:"; tail -3 "$work/fast.log"; status=1
 else
   echo "load at I = 0.9: warned that it is not quasi-static"
+fi
+# 6. Keys fixed by the checkpoint.
+set +e
+"$build/dem/aniso-dem" load "${settings[@]}" --set dem.output_dir="$work/fixed" --set dem.particles.count=500 \
+  --set dem.material.shear_modulus=1e9 --set dem.integration.explosion_overlap=0.1 --input "$work/prepared.h5" \
+  > "$work/fixed.log" 2>&1
+code=$?
+set -e
+if [ $code != 2 ] || ! grep -q "dem.particles.count = 500, the checkpoint has 200 particles" "$work/fixed.log" ||
+   ! grep -q "dem.material.shear_modulus = 1e+09 Pa, the checkpoint has 2.9e+10 Pa" "$work/fixed.log" ||
+   ! grep -q "dem.integration.explosion_overlap = 0.1, the checkpoint has 0.05" "$work/fixed.log"; then
+  echo "FAIL: keys fixed by the checkpoint, given other values: exit $code:"; cat "$work/fixed.log"; status=1
+else
+  echo "keys fixed by the checkpoint: refused with exit 2, each named"
+fi
+recorded=$(h5dump -a /provenance/config "$work/load_000.h5")
+if ! grep -q "count = 200  # from the input checkpoint" <<<"$recorded"; then
+  echo "FAIL: provenance does not record the checkpoint's particle count"; status=1
 fi
 exit $status
