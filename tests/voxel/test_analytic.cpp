@@ -57,6 +57,13 @@ TEST(Analytic, SlitChannelHasInfiniteFreePathAlongItAndBreadthHalfItsWidth) {
   EXPECT_DOUBLE_EQ(a.disk[0].median, 0.5 * width);
   EXPECT_DOUBLE_EQ(a.disk[1].median, 0.5 * width);
   EXPECT_EQ(a.disk[2].median, inf); // disks in the slit's own plane never stop fitting
+  // The default step 0 takes every distinct digital element: balls up to r^2 = 14 (sums of three
+  // squares) and disks up to 13 (of two) still span 7 voxels; r = 4 spans 9. The medians lie
+  // half-way between those radii (docs/methods/voxel.md, "Medians").
+  const VoidAnalysis every = analyze(grid, phase);
+  EXPECT_DOUBLE_EQ(every.ball.median, 0.5 * (std::sqrt(14.0) + 4.0));
+  EXPECT_DOUBLE_EQ(every.disk[0].median, 0.5 * (std::sqrt(13.0) + 4.0));
+  EXPECT_DOUBLE_EQ(every.disk[1].median, 0.5 * (std::sqrt(13.0) + 4.0));
   EXPECT_EQ(a.euler, 0);
 
   // Every distinct element: the last ball that fits is r^2 = 14 (15 is no sum of three squares,
