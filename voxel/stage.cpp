@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -68,6 +69,8 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
       "{:.2f} GiB per rank)",
       input, checkpoint.particles.size(), checkpoint.contacts.size(), shape[0], shape[1], shape[2],
       shape[0] * shape[1] * shape[2], config.resolution, needed / 1073741824.0);
+  require_file(checkpoint.particles.size() != 0,
+               fmt::format("{}: /particles holds no particle: there is no void space to measure", input));
   if (options.dry_run) return 0;
 
   const auto start = std::chrono::steady_clock::now();
@@ -76,6 +79,15 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
   const std::string hash = h5::content_hash(input);
   const h5::VoxelImage image = digitize_checkpoint(checkpoint, input, hash, config.resolution);
   const double digitize_seconds = seconds_since(start);
+  // A fully solid or fully void image has no void morphology: every median would be NaN or inf.
+  const auto solid_voxels = static_cast<std::size_t>(std::count(image.phase.begin(), image.phase.end(), 1));
+  if (solid_voxels == 0 || solid_voxels == image.phase.size()) {
+    throw NumericalError(fmt::format(
+        "voxel: the image of '{}' at {} voxels per d50 is {} (the void morphology is undefined); {}", input,
+        config.resolution, solid_voxels == 0 ? "all void" : "all solid",
+        solid_voxels == 0 ? "raise voxel.resolution so that the particles are resolved"
+                          : "the particles fill the cell: check the checkpoint"));
+  }
   std::filesystem::create_directories(config.output_dir);
   const std::string command = cli::join_command_line(argc, argv);
   const auto provenance = h5::make_provenance("aniso-voxel", reader.effective_toml(), command, comm);
