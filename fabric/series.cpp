@@ -2,9 +2,9 @@
 
 #include "common/error.hpp"
 #include "common/h5/atomic_write.hpp"
+#include "common/root_only.hpp"
 #include "fabric/output.hpp"
 #include "fabric/pearson.hpp"
-#include "common/root_only.hpp"
 
 #include <filesystem>
 #include <fstream>
