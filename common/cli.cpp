@@ -20,8 +20,10 @@ std::string rank_tag(const mpi::Comm& comm) {
 } // namespace
 
 void add_common_options(CLI::App& app, CommonOptions& options, const std::string& program) {
+  // Not CLI::ExistingFile: a missing config file is a file error (exit 3, docs/user-guide.md), not
+  // a command-line one (2); config::load_file says which.
   app.add_option("--config", options.config_path, "TOML configuration file (defaults apply to missing keys)")
-      ->check(CLI::ExistingFile);
+      ->type_name("FILE");
   app.add_option("--set", options.overrides, "override one config key, e.g. --set dem.seed=7 (repeatable)")
       ->type_name("KEY=VALUE");
   app.add_flag("--print-config", options.print_config,

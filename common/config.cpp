@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace aniso::config {
@@ -271,6 +272,10 @@ std::string Reader::effective_toml() const {
 }
 
 toml::table load_file(const std::string& path) {
+  std::error_code status;
+  require_file(std::filesystem::exists(path, status), fmt::format("config file '{}' does not exist", path));
+  require_file(!std::filesystem::is_directory(path, status),
+               fmt::format("config file '{}' is a folder, not a file", path));
   try {
     return toml::parse_file(path);
   } catch (const toml::parse_error& error) {
