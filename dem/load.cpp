@@ -130,8 +130,8 @@ void require_resume_matches(const Simulation& simulation, const DemConfig& confi
 
 // The history a resumed run continues must be its own and reach the checkpoint: another run's
 // history would be truncated and mixed in, and a shorter one would leave a silent gap.
-void require_history_continues(const History& history, const std::string& run_id, double step,
-                               const std::string& output_dir, const Logger& logger) {
+void require_history_continues(const History& history, const std::string& run_id, double step, double strain,
+                               double history_interval, const std::string& output_dir, const Logger& logger) {
   const std::string path = output_dir + "/history.h5";
   if (run_id.empty() && history.run_id().empty()) {
     logger->warn("load --resume: the checkpoint and {} carry no run id (written before run ids); only the "
@@ -153,10 +153,14 @@ void require_history_continues(const History& history, const std::string& run_id
       fmt::format("load --resume: the input is at the first step of {} ({}), the prepared assembly, not "
                   "a load checkpoint: start a loading without --resume",
                   path, step));
-  // covers_step: the step at which the history was written, right after each checkpoint; files
-  // written before it existed are checked on their last row only.
-  const double covered =
-      history.covers_step() >= 0 ? static_cast<double>(history.covers_step()) : history.last_step();
+  // covers_step: the step at which the history was written, right after each checkpoint. Files
+  // written before it existed hold rows up to the last sample before the stop, so they reach a
+  // checkpoint less than one history interval of strain past their last row.
+  double covered = static_cast<double>(history.covers_step());
+  if (history.covers_step() < 0) {
+    const double last_row_strain = -history.column("strain_11").back();
+    covered = strain - last_row_strain < history_interval ? step : history.last_step();
+  }
   require_input(covered >= step,
                 fmt::format("load --resume: {} reaches step {}, before the input checkpoint's step {} (the "
                             "run stopped between writing the two): resume from an earlier checkpoint that "
@@ -199,8 +203,8 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
   History history;
   if (resuming) {
     history = History::read(output_dir);
-    require_history_continues(history, run_id, static_cast<double>(simulation.step_count()), output_dir,
-                              logger);
+    require_history_continues(history, run_id, static_cast<double>(simulation.step_count()),
+                              compressive_strain(simulation), load.history_interval, output_dir, logger);
     require_resume_matches(simulation, config);
     history.truncate_after_step(static_cast<double>(simulation.step_count()));
   } else {

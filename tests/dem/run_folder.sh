@@ -65,6 +65,34 @@ cp -r A short
 expect resume_beyond_the_history "before the input checkpoint's step" \
   "$dem" load "${settings[@]}" --set dem.output_dir=short --input A/load_002.h5 --resume
 
+# Files written before run ids and covers_step (a legacy run stopped by SIGTERM) hold history
+# rows up to the last sample before the stop: a checkpoint less than one history interval past
+# the last row continues it, one further is refused.
+strip_legacy() { # FOLDER CHECKPOINT: remove what older versions did not write
+  /usr/bin/python3 - "$@" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1] + "/history.h5", "r+") as f:
+    del f.attrs["run_id"], f.attrs["covers_step"]
+with h5py.File(sys.argv[2], "r+") as f:
+    del f.attrs["run_id"]
+PY
+}
+for case in near far; do
+  cp -r A "legacy_$case"
+  stop=$([ "$case" = near ] && echo 0.00195 || echo 0.0018)
+  "$dem" load "${settings[@]}" --set dem.output_dir="legacy_$case" --input "legacy_$case/load_000.h5" \
+    --resume --set dem.load.final_strain=$stop --set 'dem.load.checkpoint_strains=[0.001]'
+  strip_legacy "legacy_$case" "legacy_$case/load_001.h5"
+done
+if ! "$dem" load "${settings[@]}" --set dem.output_dir=legacy_near --input legacy_near/load_001.h5 \
+  --resume >legacy_near.log 2>&1 || ! grep -q "carry no run id" legacy_near.log; then
+  echo "FAIL: a legacy history within one interval of the checkpoint was not continued:"
+  cat legacy_near.log
+  status=1
+fi
+expect legacy_beyond_the_history "before the input checkpoint's step" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=legacy_far --input legacy_far/load_001.h5 --resume
+
 # --overwrite replaces the run: the old files go, a new run id is written.
 old_id=$(h5dump -a run_id A/history.h5 | grep -o '"[^"]*"' | tail -1)
 "$dem" load "${settings[@]}" --set dem.output_dir=A --input prep/prepared.h5 --overwrite
@@ -74,5 +102,5 @@ if [ "$old_id" = "$new_id" ] || [ "$checkpoint_id" != "$new_id" ]; then
   echo "FAIL: --overwrite: history run id $old_id -> $new_id, checkpoint $checkpoint_id"
   status=1
 fi
-[ "$status" = 0 ] && echo "output folders: every refusal exit 2 with its message, no file changed; --overwrite replaced the run"
+[ "$status" = 0 ] && echo "output folders: every refusal exit 2 with its message, no file changed; --overwrite replaced the run; a legacy history continued"
 exit "$status"
