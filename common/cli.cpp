@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/h5/file.hpp"
+#include "common/memory.hpp"
 #include "common/version.hpp"
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <new>
 
 namespace aniso::cli {
 namespace {
@@ -89,6 +91,15 @@ int run(int argc, char** argv, const std::string& program,
     code = static_cast<int>(error.code());
     std::cerr << program << rank_tag(comm) << ": error (" << exit_code_name(error.code())
               << "): " << error.what() << std::endl;
+  } catch (const std::bad_alloc&) {
+    // What was asked for is checked against the memory before the large arrays (common/memory.hpp);
+    // an allocation failing anyway is still the size of the problem, not a bug.
+    code = static_cast<int>(ExitCode::bad_input);
+    std::cerr << program << rank_tag(comm) << ": error (" << exit_code_name(ExitCode::bad_input)
+              << "): out of memory: an allocation failed (peak use so far " << peak_resident_bytes() / 1048576
+              << " MiB, this process may use "
+              << static_cast<std::uint64_t>(usable_memory_bytes() / 1048576.0)
+              << " MiB): make the problem smaller or give the job more memory" << std::endl;
   } catch (const std::exception& error) {
     code = static_cast<int>(ExitCode::internal_error);
     std::cerr << program << rank_tag(comm) << ": internal error: " << error.what() << std::endl;

@@ -21,12 +21,12 @@ DemConfig read_dem_config(config::Reader& reader) {
 
   auto& p = c.particles;
   p.count = reader.integer("dem.particles.count", p.count, Range::closed(2, 1e9), "number of particles");
-  p.diameter_min = reader.real("dem.particles.diameter_min", p.diameter_min, units::metre, Range::positive(),
+  p.diameter_min = reader.real("dem.particles.diameter_min", p.diameter_min, units::metre, ranges::diameter(),
                                "smallest diameter (mid-plane diameter for ovoids)");
-  p.diameter_max = reader.real("dem.particles.diameter_max", p.diameter_max, units::metre, Range::positive(),
+  p.diameter_max = reader.real("dem.particles.diameter_max", p.diameter_max, units::metre, ranges::diameter(),
                                "largest diameter");
   p.d50 =
-      reader.real("dem.particles.d50", p.d50, units::metre, ranges::length(), "median diameter by volume");
+      reader.real("dem.particles.d50", p.d50, units::metre, ranges::diameter(), "median diameter by volume");
   p.aspect_ratio =
       reader.real("dem.particles.aspect_ratio", p.aspect_ratio, units::none, ranges::aspect_ratio(),
                   "axial height / mid-plane diameter (paper: 1, 0.8, 0.625, 0.5)");

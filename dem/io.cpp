@@ -128,12 +128,11 @@ SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, co
 namespace {
 
 // The particle rows a simulation can start from: at least one particle, positive sizes, masses
-// and inertias, aspect ratios the shapes support, and positions inside the cell (a particle
-// outside it gave a wrong stress and a wrong image).
+// and inertias, and aspect ratios the shapes support (h5::read_checkpoint has already refused
+// positions outside the cell, for every stage).
 void check_particle_rows(const h5::Checkpoint& checkpoint, const std::string& path) {
   const auto& rows = checkpoint.particles;
   if (rows.size() == 0) throw FileError(path + ": /particles: no particles");
-  const Vec3& lengths = checkpoint.cell.lengths;
   const config::Range aspect = ranges::aspect_ratio();
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto refuse = [&](const char* dataset, const std::string& what) {
@@ -145,13 +144,6 @@ void check_particle_rows(const h5::Checkpoint& checkpoint, const std::string& pa
     if (!(rows.inertia[k].minCoeff() > 0.0)) refuse("inertia", "a principal moment is not > 0");
     if (!aspect.contains(rows.aspect_ratio[k]))
       refuse("aspect_ratio", fmt::format("{:g}, expected {}", rows.aspect_ratio[k], aspect.describe()));
-    for (int axis = 0; axis < 3; ++axis) {
-      // Wrapped positions lie in [0, L); a round-off beyond either end is tolerated.
-      const double x = rows.position[k][axis], slack = 1e-9 * lengths[axis];
-      if (!(x >= -slack && x <= lengths[axis] + slack))
-        refuse("position", fmt::format("coordinate {} = {:g} m lies outside the cell [0, {:g}] m", axis, x,
-                                       lengths[axis]));
-    }
   }
 }
 

@@ -3,6 +3,8 @@
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
+#include "common/memory.hpp"
+#include "common/output_folder.hpp"
 #include "common/stop_request.hpp"
 #include "dem/checkpoint_keys.hpp"
 #include "dem/config.hpp"
@@ -93,11 +95,18 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   }
   require_input(!(resume && overwrite), "load: --resume continues the run in dem.output_dir and --overwrite "
                                         "replaces it; give one of them");
+  // The particle arrays alone hold 26 doubles per particle; contacts, neighbour lists and the
+  // checkpoint copy at least as much again, so 512 bytes is a floor, not an estimate.
+  constexpr double min_bytes_per_particle = 512;
+  require_memory(min_bytes_per_particle * static_cast<double>(config.particles.count) / comm.size(),
+                 fmt::format("dem: {} particles on {} rank(s) (at least {:.0f} bytes each)",
+                             config.particles.count, comm.size(), min_bytes_per_particle),
+                 "lower dem.particles.count or spread the run over more nodes");
   logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
   if (options.dry_run) return 0;
 
   if (hold->parsed()) return run_hold(*checkpoint, input, hold_steps, hold_csv, max_drift, logger, comm);
-  std::filesystem::create_directories(config.output_dir);
+  create_output_folder(config.output_dir);
   const dem::RunFolderLock lock(config.output_dir, comm); // one writer per folder
   const std::string command = cli::join_command_line(argc, argv);
   if (prepare->parsed()) {

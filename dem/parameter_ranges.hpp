@@ -26,7 +26,13 @@ inline Range density() {
 }
 inline Range length() {
   return Range::positive();
-} ///< d50, diameters, skin in metres
+} ///< skin in metres
+/// Particle diameters in metres, from a nanometre to a kilometre: far smaller sizes underflow the
+/// volumes and inertias (d^5) that the simulation needs, and the range covers every granular
+/// material from clay to boulders.
+inline Range diameter() {
+  return Range::closed(1e-9, 1e3);
+}
 inline Range global_damping() {
   return Range::closed(0.0, 10.0);
 }

@@ -7,6 +7,7 @@
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "common/h5/content_hash.hpp"
+#include "common/output_folder.hpp"
 #include "fabric/config.hpp"
 #include "fabric/measures.hpp"
 #include "fabric/output.hpp"
@@ -93,7 +94,7 @@ int run_fabric(int argc, char** argv, const mpi::Comm& comm) {
   if (options.dry_run) return 0;
 
   if (!std::filesystem::path(output).parent_path().empty())
-    std::filesystem::create_directories(std::filesystem::path(output).parent_path());
+    create_output_folder(std::filesystem::path(output).parent_path().string());
   const std::string command = cli::join_command_line(argc, argv);
   if (!is_series) {
     const auto provenance = h5::make_provenance("aniso-fabric", reader.effective_toml(), command, comm);

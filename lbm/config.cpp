@@ -1,5 +1,9 @@
 #include "lbm/config.hpp"
 
+#include "common/error.hpp"
+
+#include <fmt/format.h>
+
 namespace aniso::lbm {
 
 LbmConfig read_lbm_config(config::Reader& reader) {
@@ -39,6 +43,13 @@ LbmConfig read_lbm_config(config::Reader& reader) {
   c.write_velocity = reader.boolean("lbm.write_velocity", false,
                                     "also write the velocity field of every run (HDF5 + XDMF for ParaView)");
   f.keep_velocity = c.write_velocity;
+  // The convergence test compares the mean velocity at two checks, so fewer steps never converge
+  // (and the first check came after max_steps, reported as a run longer than asked).
+  require_input(f.max_steps >= 2 * f.check_interval,
+                fmt::format("lbm.max_steps = {} is below two convergence checks (2 x "
+                            "lbm.convergence.check_interval = {}): the test compares the mean velocity "
+                            "of two checks, so the flow could never converge",
+                            f.max_steps, 2 * f.check_interval));
   c.output_dir = reader.text("lbm.output_dir", ".", "folder for permeability_<image stem>.h5");
   c.petsc_options =
       reader.text("lbm.petsc_options", "", "PETSc options database entries, e.g. \"-log_view\"");

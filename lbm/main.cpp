@@ -2,6 +2,7 @@
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/image.hpp"
+#include "common/output_folder.hpp"
 #include "lbm/config.hpp"
 #include "lbm/io.hpp"
 #include "lbm/permeability.hpp"
@@ -109,7 +110,7 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
     const auto runs = lbm::run_direction(image, config.permeability, direction, comm, logger);
     const std::string direction_file = lbm::direction_path(config.output_dir, input, direction);
     if (comm.is_root()) {
-      std::filesystem::create_directories(config.output_dir);
+      create_output_folder(config.output_dir);
       lbm::write_direction(direction_file, runs, direction, image, config.permeability, provenance);
       logger->info("wrote {}", direction_file);
     }
@@ -120,7 +121,7 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const lbm::PermeabilityResult result = lbm::compute_permeability(image, config.permeability, comm, logger);
   log_tensor(result, image.voxel_size, logger);
   if (comm.is_root()) {
-    std::filesystem::create_directories(config.output_dir);
+    create_output_folder(config.output_dir);
     lbm::write_permeability(path, result, image, config.permeability, provenance);
     logger->info("wrote {}", path);
     if (config.write_velocity) {

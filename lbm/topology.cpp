@@ -1,6 +1,7 @@
 #include "lbm/topology.hpp"
 
 #include "common/error.hpp"
+#include "common/memory.hpp"
 
 #include <fmt/format.h>
 
@@ -112,6 +113,13 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
   topology.n_fluid_global = comm.sum(topology.n_fluid);
   require_input(topology.n_fluid_global > 0,
                 "the image has no void voxel: there is no pore space to flow through");
+
+  // The streaming table (18 indices), two population arrays (19 values each, double at most) and
+  // the moments record per fluid voxel, before any of them is allocated.
+  constexpr double bytes_per_fluid_voxel = 18 * 4 + 2 * 19 * 8 + 4 * 8;
+  require_memory(bytes_per_fluid_voxel * static_cast<double>(topology.n_fluid),
+                 fmt::format("lbm: {} fluid voxels on this rank", topology.n_fluid),
+                 "use a coarser image or more ranks");
 
   // Streaming table; remote sources become requests to their owners.
   const auto n_fluid = static_cast<std::size_t>(topology.n_fluid);

@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/h5/atomic_write.hpp"
 #include "common/h5/file.hpp"
+#include "common/output_folder.hpp"
 #include "common/units.hpp"
 #include "probe/h5_values.hpp"
 
@@ -133,7 +134,7 @@ ForkResult read_fork_group(const h5::Group& group) {
 // Writes the file through `body` at a temporary name and renames it into place.
 template <class Body> void write_atomically(const std::string& path, const Body& body) {
   const std::string folder = std::filesystem::path(path).parent_path().string();
-  if (!folder.empty()) std::filesystem::create_directories(folder);
+  create_output_folder(folder);
   h5::AtomicFile atomic(path);
   {
     h5::File file = h5::File::create(atomic.temp_path());

@@ -5,6 +5,7 @@
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
+#include "common/output_folder.hpp"
 #include "probe/collect.hpp"
 #include "probe/config.hpp"
 #include "probe/files.hpp"
@@ -114,7 +115,7 @@ int run_probe(int argc, char** argv, const mpi::Comm& comm) {
                checkpoint.particles.size(), checkpoint.contacts.size(), probe_source.strain,
                probe_source.hash);
   if (options.dry_run) return 0;
-  if (comm.is_root()) std::filesystem::create_directories(config.output_dir);
+  if (comm.is_root()) create_output_folder(config.output_dir);
 
   if (fork->parsed()) {
     const auto provenance = h5::make_provenance("aniso-probe fork", reader.effective_toml(), command, comm);

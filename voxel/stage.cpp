@@ -5,9 +5,10 @@
 #include "common/h5/checkpoint.hpp"
 #include "common/h5/content_hash.hpp"
 #include "common/h5/image.hpp"
+#include "common/memory.hpp"
+#include "common/output_folder.hpp"
 #include "voxel/config.hpp"
 #include "voxel/digitize.hpp"
-#include "voxel/peak_memory.hpp"
 #include "voxel/void_analysis.hpp"
 #include "voxel/void_results.hpp"
 
@@ -57,13 +58,10 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
       static_cast<double>(shape[0]) * static_cast<double>(shape[1]) * static_cast<double>(shape[2]);
   // Per rank: the image (1 byte), four distance maps and a work map (4 bytes each) per voxel.
   const double needed = bytes_per_voxel * voxels;
-  const double memory = physical_memory_bytes();
-  require_input(
-      memory == 0 || needed < memory,
-      fmt::format("voxel: {} x {} x {} voxels at resolution {} need about {:.1f} GiB per rank, more than "
-                  "this machine's {:.1f} GiB; lower voxel.resolution",
-                  shape[0], shape[1], shape[2], config.resolution, needed / 1073741824.0,
-                  memory / 1073741824.0));
+  require_memory(needed,
+                 fmt::format("voxel: {} x {} x {} voxels at resolution {} (per rank)", shape[0], shape[1],
+                             shape[2], config.resolution),
+                 "lower voxel.resolution");
   logger->info(
       "input '{}': {} particles, {} contacts; image {} x {} x {} = {} voxels at {} voxels per d50 (about "
       "{:.2f} GiB per rank)",
@@ -88,7 +86,7 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
         solid_voxels == 0 ? "raise voxel.resolution so that the particles are resolved"
                           : "the particles fill the cell: check the checkpoint"));
   }
-  std::filesystem::create_directories(config.output_dir);
+  create_output_folder(config.output_dir);
   const std::string command = cli::join_command_line(argc, argv);
   const auto provenance = h5::make_provenance("aniso-voxel", reader.effective_toml(), command, comm);
   if (config.write_image && comm.is_root()) h5::write_voxel_image(image_path, image, provenance);

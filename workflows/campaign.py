@@ -55,8 +55,15 @@ STAGE_FEATURES = {
 STUB_MARK = b"this stage is not built yet"
 
 
-def fail(message):
-    sys.exit(f"campaign.py: {message}")
+# The exit codes and kinds of common/error.hpp (docs/user-guide.md, "Exit codes").
+BAD_INPUT, FILE_ERROR = 2, 3
+ERROR_KINDS = {BAD_INPUT: "bad input", FILE_ERROR: "file error"}
+
+
+def fail(message, code=BAD_INPUT):
+    """Stops as the programs do: 'campaign.py: error (kind): message' and the kind's exit code."""
+    print(f"campaign.py: error ({ERROR_KINDS[code]}): {message}", file=sys.stderr)
+    sys.exit(code)
 
 
 # [workflow] keys: the stage they select checkpoints for, and the key whose strains bound them.
@@ -67,17 +74,23 @@ SELECTING_STAGES = {"probe": "probe_strains", "voxel": "voxel_strains", "lbm": "
 def checkpoint_strains(config, bin_dir):
     dem = os.path.join(bin_dir, "dem", "aniso-dem")
     if not os.access(dem, os.X_OK):
-        fail(f"{dem} not found: build it first (make build)")
+        fail(f"{dem} not found: build it first (make build)", FILE_ERROR)
     printed = subprocess.run([dem, "prepare", "--config", config, "--print-config", "--log-level", "error"],
                              capture_output=True, text=True)
     if printed.returncode != 0:
-        fail(f"'{dem} load --config {config} --print-config' failed:\n{printed.stderr}")
+        fail(f"'{dem} prepare --config {config} --print-config' failed:\n{printed.stderr.rstrip()}",
+             printed.returncode if printed.returncode in ERROR_KINDS else BAD_INPUT)
     return tomllib.loads(printed.stdout)["dem"]["load"]["checkpoint_strains"]
 
 
 def workflow_section(config):
-    with open(config, "rb") as f:
-        section = tomllib.load(f).get("workflow", {})
+    try:
+        with open(config, "rb") as f:
+            section = tomllib.load(f).get("workflow", {})
+    except OSError as error:
+        fail(f"{config}: cannot read the config: {error.strerror}", FILE_ERROR)
+    except tomllib.TOMLDecodeError as error:
+        fail(f"{config}: not valid TOML: {error}")
     if not isinstance(section, dict):
         fail(f"{config}: [workflow] must be a table, not {section!r}")
     for key in section:
@@ -214,7 +227,7 @@ def main(argv):
     elif len(argv) == 4 and argv[1] == "load-input":
         print(" ".join(load_input(argv[2], argv[3])))
     else:
-        sys.exit(__doc__)
+        fail(f"unknown command line {' '.join(argv[1:]) or '(none)'}\n{__doc__}")
 
 
 if __name__ == "__main__":

@@ -167,6 +167,19 @@ Problem check_particles(const ParticleRows& particles, const RowLabel& label) {
   });
 }
 
+// Stored positions are wrapped into [0, L); a particle outside the cell gives a wrong stress and
+// a wrong image, so the reader refuses one beyond a round-off of either end.
+Problem check_positions_in_cell(const ParticleRows& particles, const Vec3& lengths, const RowLabel& label) {
+  for (std::size_t k = 0; k < particles.size(); ++k)
+    for (int axis = 0; axis < 3; ++axis) {
+      const double x = particles.position[k][axis], slack = 1e-9 * lengths[axis];
+      if (!(x >= -slack && x <= lengths[axis] + slack))
+        return "/particles/position: coordinate " + std::to_string(axis) + " = " + number(x) + " m at " +
+               label(k) + " lies outside the cell [0, " + number(lengths[axis]) + "] m";
+    }
+  return std::nullopt;
+}
+
 Problem check_contact_values(const ContactRows& contacts, const RowLabel& label) {
   return first_of({
       [&] { return check_finite("/contacts/normal", contacts.normal, label); },
@@ -621,6 +634,7 @@ Checkpoint read_file(const std::string& path) {
       [&] { return check_run_state(checkpoint); },
       [&] { return check_cell(checkpoint.cell); },
       [&] { return check_particles(checkpoint.particles, row); },
+      [&] { return check_positions_in_cell(checkpoint.particles, checkpoint.cell.lengths, row); },
       [&] { return check_contact_ids(pairs, checkpoint.particles.size(), row); },
       [&]() -> Problem {
         for (std::size_t k = 1; k < pairs.size(); ++k)

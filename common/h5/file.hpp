@@ -168,6 +168,8 @@ private:
   friend class Group;
   using Object::Object;
   template <Element T> void check_stored_type() const;
+  /// Throws the FileError of a failed read; a failed checksum is named as damage to the file.
+  [[noreturn]] void fail_read() const;
   /// Writes rows already on this rank through one hyperslab union; collective in a parallel file.
   template <Element T>
   void write_local_rows(const RowSelection& rows, std::span<const T> data, const Dims& shape);

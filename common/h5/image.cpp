@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/h5/atomic_write.hpp"
 #include "common/h5/file.hpp"
+#include "common/memory.hpp"
 
 #include <fmt/format.h>
 
@@ -43,7 +44,7 @@ void check_image(const VoxelImage& image, const std::string& path) {
                                     bad == image.phase.end() ? 0 : *bad, bad - image.phase.begin()));
 }
 
-// Creates /image/phase chunked and deflated (file.hpp's create_dataset makes contiguous datasets).
+// Creates /image/phase in cubic chunks, deflated and checksummed (file.hpp's create_dataset chunks by rows).
 Dataset create_phase_dataset(Group& group, const Dims& dims) {
   const std::string where = group.file_path() + ": " + phase_path;
   const Handle space(H5Screate_simple(3, dims.data(), nullptr), H5Sclose);
@@ -52,7 +53,7 @@ Dataset create_phase_dataset(Group& group, const Dims& dims) {
   for (std::size_t axis = 0; axis < 3; ++axis)
     chunk[axis] = std::min(dims[axis], chunk_edge);
   if (!space.valid() || !create_list.valid() || H5Pset_chunk(create_list.get(), 3, chunk.data()) < 0 ||
-      H5Pset_deflate(create_list.get(), deflate_level) < 0)
+      H5Pset_deflate(create_list.get(), deflate_level) < 0 || H5Pset_fletcher32(create_list.get()) < 0)
     throw FileError(where + ": cannot set up a chunked, deflated dataset");
   const Handle dataset(
       H5Dcreate2(group.id(), "phase", H5T_STD_U8LE, space.get(), H5P_DEFAULT, create_list.get(), H5P_DEFAULT),
@@ -204,6 +205,9 @@ VoxelImage read_voxel_image(const std::string& path) {
   image.origin = read_origin(phase);
   image.source = phase.read_string_attribute("source");
   image.source_hash = phase.read_string_attribute("source_hash");
+  require_memory(static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]),
+                 fmt::format("{}: the {} x {} x {} voxel image", path, dims[2], dims[1], dims[0]),
+                 "use a coarser image (voxel.resolution)");
   image.phase = phase.read<std::uint8_t>();
   const auto bad = std::find_if(image.phase.begin(), image.phase.end(), [](std::uint8_t v) { return v > 1; });
   if (bad != image.phase.end())

@@ -130,6 +130,13 @@ std::vector<Corruption> corruptions() {
          rewrite<double>(p, "particles", "position", [=](auto& v) { v[3 * 4 + 1] = nan; });
        },
        {"/particles/position", "non-finite", "row 4", "column 1"}},
+      {"position_outside_the_cell", // a wrong stress and a wrong image, in every stage (issue 22)
+       [](const std::string& p) {
+         const File file = File::open(p, File::Access::read_write);
+         const std::vector<double> lengths = file.open_group("cell").read_dataset<double>("lengths", {3});
+         rewrite<double>(p, "particles", "position", [&](auto& v) { v[3 * 5 + 2] = 1.5 * lengths[2]; });
+       },
+       {"/particles/position", "coordinate 2", "row 5", "lies outside the cell"}},
       {"bad_ids",
        [](const std::string& p) {
          rewrite<std::uint64_t>(p, "particles", "id", [](auto& v) { std::swap(v[2], v[3]); });

@@ -24,19 +24,12 @@ settings=(--set dem.particles.count=200 --set dem.seed=4 --set dem.prepare.cycle
 sums_before=$(md5sum A/* B/*)
 status=0
 
+source "$(dirname "$0")/../tools/cli_lib.sh"
 # expect NAME PATTERN COMMAND...: exit 2 with PATTERN in the output.
 expect() {
   local name=$1 pattern=$2
   shift 2
-  set +e
-  "$@" >"$name.log" 2>&1
-  local code=$?
-  set -e
-  if [ "$code" != 2 ] || ! grep -q -- "$pattern" "$name.log"; then
-    echo "FAIL: $name: exit $code (expected 2) or no '$pattern' in:"
-    cat "$name.log"
-    status=1
-  fi
+  expect_exit 2 "$name" "$pattern" "$@"
 }
 
 expect fresh_into_a_run "already holds a loading run" \

@@ -166,7 +166,8 @@ TEST(Failures, DiameterMinNotBelowD50IsRejected) {
 
 // (d) A checkpoint is refused for what the configuration would refuse, and for particle rows no
 // simulation can start from (issue 22: a control interval of 0 gave SIGFPE, zero particles
-// SIGSEGV, a Poisson ratio of 0.7 or a particle outside the cell ran as given).
+// SIGSEGV, a Poisson ratio of 0.7 ran as given). A particle outside the cell is refused by
+// h5::read_checkpoint, for every stage (tests/common/test_checkpoint.cpp).
 TEST(Failures, CheckpointOutsideTheConfigRangesIsRefused) {
   const DemConfig config = test::small_config(150, 5);
   const Simulation simulation = test::loose_assembly(config);
@@ -191,9 +192,6 @@ TEST(Failures, CheckpointOutsideTheConfigRangesIsRefused) {
       {"negative density", [&](h5::Checkpoint& c) { set_parameter(c, "density", -2650); }, "'density'"},
       {"zero time step", [](h5::Checkpoint& c) { c.time_step = 0; }, "time_step): value 0, expected > 0"},
       {"no particles", [](h5::Checkpoint& c) { c.particles.resize(0); }, "/particles: no particles"},
-      {"particle outside the cell",
-       [](h5::Checkpoint& c) { c.particles.position[3][1] = 2 * c.cell.lengths[1]; },
-       "/particles/position: row 3"},
       {"zero mass", [](h5::Checkpoint& c) { c.particles.mass[7] = 0; }, "/particles/mass: row 7"},
       {"aspect ratio 0.1", [](h5::Checkpoint& c) { c.particles.aspect_ratio[2] = 0.1; },
        "/particles/aspect_ratio: row 2"},

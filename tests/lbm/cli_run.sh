@@ -62,9 +62,19 @@ grep -qE "Mach|non-finite" "$work/diverge.log" || fail "divergence message does 
 ls "$work" | grep -q '\.tmp-' && fail "a temporary file was left behind"
 
 set +e
-"$lbm" --input "$work/cell.h5" --set lbm.output_dir="\"$work/limit\"" --set lbm.max_steps=100 > "$work/limit.log" 2>&1
+"$lbm" --input "$work/cell.h5" --set lbm.output_dir="\"$work/limit\"" --set lbm.max_steps=200 > "$work/limit.log" 2>&1
 code=$?
 set -e
 [ "$code" -eq 5 ] || { cat "$work/limit.log"; fail "step-limited run exited $code, expected 5"; }
+grep -q "not converged after 200 steps" "$work/limit.log" || fail "the step limit is not reported as 200 steps"
 [ ! -e "$work/limit/permeability_cell.h5" ] || fail "a non-converged run wrote a result"
+
+# A limit below two convergence checks could never converge (it once ran 100 steps for 50 asked).
+set +e
+"$lbm" --input "$work/cell.h5" --set lbm.output_dir="\"$work/limit\"" --set lbm.max_steps=50 > "$work/short.log" 2>&1
+code=$?
+set -e
+[ "$code" -eq 2 ] || { cat "$work/short.log"; fail "a 50-step limit exited $code, expected 2"; }
+grep -q "lbm.max_steps = 50 is below two convergence checks" "$work/short.log" ||
+  { cat "$work/short.log"; fail "a 50-step limit is not explained"; }
 echo "cli_run.sh: all checks passed"

@@ -8,11 +8,11 @@
 //                    [--image OUT.h5] [--skip-families] [--radius-step S (default 0: every distinct element)]
 #include "common/h5/checkpoint.hpp"
 #include "common/h5/image.hpp"
+#include "common/memory.hpp"
 #include "common/mpi.hpp"
 #include "voxel/digitize.hpp"
 #include "voxel/euler.hpp"
 #include "voxel/openings.hpp"
-#include "voxel/peak_memory.hpp"
 #include "voxel/void_analysis.hpp"
 
 #include <algorithm>
@@ -189,6 +189,6 @@ int main(int argc, char** argv) {
   report("whole analysis", t_all,
          "ball median " + std::to_string(analysis.ball.median) + " voxels, Euler " +
              std::to_string(analysis.euler));
-  std::printf("peak RSS %.0f MiB\n", static_cast<double>(voxel::peak_resident_bytes()) / 1048576.0);
+  std::printf("peak RSS %.0f MiB\n", static_cast<double>(peak_resident_bytes()) / 1048576.0);
   return 0;
 }

@@ -140,8 +140,13 @@ class Stages(unittest.TestCase):
     def test_missing_dem_is_named(self):
         with tempfile.TemporaryDirectory() as folder:
             result = campaign("checkpoints", os.path.join(WORKFLOWS, "configs", "e2e.toml"), folder)
-            self.assertNotEqual(result.returncode, 0)
-            self.assertIn("aniso-dem not found", result.stderr)
+            self.assertEqual(result.returncode, 3)
+            self.assertRegex(result.stderr, r"^campaign.py: error \(file error\): .*aniso-dem not found")
+
+    def test_a_bad_command_line_is_bad_input(self):
+        result = campaign("no-such-command")
+        self.assertEqual(result.returncode, 2)
+        self.assertRegex(result.stderr, r"^campaign.py: error \(bad input\): unknown command line no-such-command")
 
 
 def e2e_with_workflow(folder, section):
@@ -186,8 +191,9 @@ class CheckpointSelection(unittest.TestCase):
         }
         for section, message in cases.items():
             code, _, log = self.stems(section, "lbm" if "lbm" in section else "probe")
-            self.assertNotEqual(code, 0, section)
+            self.assertEqual(code, 2, section)
             self.assertIn(message, log, section)
+            self.assertRegex(log, r"^campaign.py: error \(bad input\): ", section)
 
     def test_dry_run_plans_only_the_selected_analyses(self):
         bin_dir = os.path.join(self.dir.name, "bin")

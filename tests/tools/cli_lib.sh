@@ -1,0 +1,38 @@
+# Helpers of the shell tests of bad input and faults; source it after setting `status=0`.
+
+# small_prepared_assembly BUILD FOLDER [SEED]: 200 particles prepared in seconds into FOLDER.
+small_prepared_assembly() {
+  "$1/dem/aniso-dem" prepare --set dem.particles.count=200 --set dem.seed="${3:-3}" --set dem.prepare.cycles=1 \
+    --set dem.prepare.void_ratio_tolerance=1 --set dem.equilibrium.tolerance=1e-3 \
+    --set dem.prepare.initial_solid_fraction=0.35 --set dem.output_dir="$2" --log-level warn
+}
+
+# expect_exit CODE NAME PATTERN COMMAND...: runs COMMAND with its output in NAME.log; unless it
+# exits CODE with a line matching PATTERN (grep basic regex), prints the log and sets status=1.
+expect_exit() {
+  local expected=$1 name=$2 pattern=$3
+  shift 3
+  set +e
+  "$@" >"$name.log" 2>&1
+  local code=$?
+  set -e
+  if [ "$code" != "$expected" ] || ! grep -q -- "$pattern" "$name.log"; then
+    echo "FAIL: $name: exit $code (expected $expected) or no '$pattern' in:"
+    cat "$name.log"
+    status=1
+  fi
+}
+
+# enter_fresh_folder DIR: empties DIR (made if missing) and makes it the working directory.
+enter_fresh_folder() {
+  rm -rf "$1"
+  mkdir -p "$1"
+  cd "$1"
+}
+
+# small_checkpoint_and_image BUILD: dem/prepared.h5 (200 particles) and its voxel image
+# voxel/image_prepared.h5, in the working directory.
+small_checkpoint_and_image() {
+  small_prepared_assembly "$1" dem
+  "$1/voxel/aniso-voxel" --input dem/prepared.h5 --set voxel.output_dir=voxel --log-level warn
+}
