@@ -182,8 +182,10 @@ DirectionFile read_direction(const std::string& path) {
   d.settings.flow.magic = group.read_attribute<double>("magic");
   d.settings.body_force = group.read_attribute<double>("body_force");
   d.settings.flow.tolerance = group.read_attribute<double>("tolerance");
-  d.settings.flow.precision =
-      group.read_string_attribute("precision") == "float" ? Precision::float32 : Precision::float64;
+  const std::string precision = group.read_string_attribute("precision");
+  if (precision != "float" && precision != "double")
+    group.fail(fmt::format("precision '{}' is not 'float' or 'double'", precision));
+  d.settings.flow.precision = precision == "float" ? Precision::float32 : Precision::float64;
   if (!(d.settings.flow.tau > 0.5) || !(d.settings.body_force > 0) || !(d.settings.flow.magic > 0))
     group.fail("tau, magic or body_force out of range");
   d.image.voxel_size = read_voxel_size(group);

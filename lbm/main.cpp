@@ -37,14 +37,26 @@ int collect_directions(const std::string& input, const aniso::lbm::LbmConfig& co
     const lbm::DirectionFile& d = files.back();
     const lbm::DirectionFile& first = files.front();
     require_file(d.axis == axis, fmt::format("{}: holds direction {}, expected {}", path, d.axis, axis));
-    require_file(d.method == first.method && d.settings.flow.tau == first.settings.flow.tau &&
-                     d.settings.flow.magic == first.settings.flow.magic &&
-                     d.settings.body_force == first.settings.body_force &&
-                     d.image.source_hash == first.image.source_hash &&
-                     d.image.voxel_size == first.image.voxel_size,
-                 fmt::format("{}: method, tau, magic, body force, voxel size or source hash differ from "
-                             "direction 0's; rerun the directions with one configuration",
-                             path));
+    // Every setting that changes the numbers: a tensor assembled from runs of different
+    // precision, tolerance or image would look fine and be wrong.
+    const std::vector<std::pair<const char*, bool>> agreements{
+        {"method", d.method == first.method},
+        {"tau", d.settings.flow.tau == first.settings.flow.tau},
+        {"magic", d.settings.flow.magic == first.settings.flow.magic},
+        {"body force", d.settings.body_force == first.settings.body_force},
+        {"precision", d.settings.flow.precision == first.settings.flow.precision},
+        {"convergence tolerance", d.settings.flow.tolerance == first.settings.flow.tolerance},
+        {"voxel size", d.image.voxel_size == first.image.voxel_size},
+        {"source hash", d.image.source_hash == first.image.source_hash},
+        {"porosity", d.porosity == first.porosity && d.fluid_voxels == first.fluid_voxels},
+    };
+    std::string differing;
+    for (const auto& [name, agrees] : agreements)
+      if (!agrees) differing += (differing.empty() ? "" : ", ") + std::string(name);
+    require_file(differing.empty(),
+                 fmt::format("{}: {} differ(s) from direction 0's ({}); rerun the "
+                             "directions with one configuration on one image",
+                             path, differing, lbm::direction_path(config.output_dir, input, 0)));
     runs.insert(runs.end(), d.runs.begin(), d.runs.end());
   }
   const lbm::DirectionFile& first = files.front();

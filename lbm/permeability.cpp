@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "lbm/partition.hpp"
+#include "lbm/percolation.hpp"
 #include "lbm/petsc_log.hpp"
 #include "lbm/topology.hpp"
 #include "lbm/trt.hpp"
@@ -25,6 +26,12 @@ FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settin
                  const mpi::Comm& comm, const Logger& logger) {
   const LogEvents events = lbm_log_events();
   const Faces faces = walls == FaceKind::periodic ? all_periodic : walled_except(axis, walls);
+  require_input(percolates(image, axis, faces),
+                fmt::format("{}: its pore space does not connect across the cell along x{} (no path of "
+                            "void voxels, joined by the D3Q19 links, wraps around it): the permeability "
+                            "along x{} is zero and cannot be measured by flow. A coarse image closes "
+                            "throats: check voxel.resolution",
+                            image.source.empty() ? "the image" : "the image of " + image.source, axis + 1, axis + 1));
   Topology topology;
   {
     ScopedStage stage(events, events.setup);
@@ -130,6 +137,13 @@ PermeabilityResult assemble_permeability(Method method, std::vector<FlowRun> run
     }
     result.k_lattice = solve_off_diagonal(diagonal, drive, flux, result.inverse_residual);
   }
+  // Each diagonal is a flux along the push: a non-positive one is a run that did not measure a
+  // flow, never a permeability (the percolation check above makes it a bug, not an input).
+  for (int axis = 0; axis < 3; ++axis)
+    if (!(result.k_lattice(axis, axis) > 0))
+      throw NumericalError(fmt::format("K{}{} = {:.4g} (lattice units) is not positive: the flow along x{} "
+                                       "carries no net flux",
+                                       axis + 1, axis + 1, result.k_lattice(axis, axis), axis + 1));
   result.runs = std::move(runs);
   return result;
 }

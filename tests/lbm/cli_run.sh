@@ -2,7 +2,8 @@
 # End-to-end checks of aniso-lbm on a small image: a run writes permeability_<stem>.h5 with the
 # contract's datasets; --direction runs plus collect give the same tensor (a missing direction
 # file is named, exit 3); a diverging run exits 4 (numerical failure), names the cause, and leaves the
-# earlier result untouched; a run past its step limit exits 5.
+# earlier result untouched; a run past its step limit exits 5; collect refuses direction files of
+# different settings; an image whose pore space does not percolate is refused (exit 2).
 # usage: cli_run.sh ANISO_LBM MAKE_LBM_IMAGE MPIEXEC
 set -euo pipefail
 lbm=$1 make_image=$2 mpiexec=$3
@@ -44,6 +45,16 @@ import sys, h5py, numpy as np
 with h5py.File(sys.argv[1]) as a, h5py.File(sys.argv[2]) as b:
     assert np.array_equal(a["permeability/K"][...], b["permeability/K"][...]), (a["permeability/K"][...], b["permeability/K"][...])
 PY
+# Direction files of another precision or tolerance are refused by name (they were assembled).
+"$lbm" --input "$work/cell.h5" --direction 1 --set lbm.output_dir="\"$work/split\"" \
+  --set lbm.convergence.tolerance=1e-3 --set lbm.precision=float > "$work/split1b.log" 2>&1 ||
+  { cat "$work/split1b.log"; fail "direction 1 in float failed"; }
+set +e
+"$lbm" collect --input "$work/cell.h5" --set lbm.output_dir="\"$work/split\"" > "$work/collect3.log" 2>&1
+code=$?
+set -e
+[ "$code" -eq 3 ] && grep -q "direction1.h5: precision, convergence tolerance differ(s) from direction 0's" \
+  "$work/collect3.log" || { cat "$work/collect3.log"; fail "collect of mixed precision exited $code, expected 3 naming both"; }
 rm "$work/split/permeability_cell_direction1.h5"
 set +e
 "$lbm" collect --input "$work/cell.h5" --set lbm.output_dir="\"$work/split\"" > "$work/collect2.log" 2>&1
@@ -77,4 +88,22 @@ set -e
 [ "$code" -eq 2 ] || { cat "$work/short.log"; fail "a 50-step limit exited $code, expected 2"; }
 grep -q "lbm.max_steps = 50 is below two convergence checks" "$work/short.log" ||
   { cat "$work/short.log"; fail "a 50-step limit is not explained"; }
+# A pore space that does not connect across the cell along x1 (a solid plane) has no flow to
+# measure along it: refused before any run (it gave K11 = -1.8e-13 m^2 with exit 0).
+/usr/bin/python3 - "$work/cell.h5" "$work/walled.h5" <<'PY'
+import shutil, sys, h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    phase = f["image/phase"]
+    solid = phase[...]
+    solid[:, :, 5] = 1  # dims [n3, n2, n1]: the plane x1 = 5
+    phase[...] = solid
+PY
+set +e
+"$lbm" --input "$work/walled.h5" --set lbm.output_dir="\"$work/walled\"" > "$work/walled.log" 2>&1
+code=$?
+set -e
+[ "$code" -eq 2 ] && grep -q "pore space does not connect across the cell along x1" "$work/walled.log" ||
+  { cat "$work/walled.log"; fail "a walled image exited $code, expected 2 naming x1"; }
+[ ! -e "$work/walled/permeability_walled.h5" ] || fail "a walled image wrote a permeability"
 echo "cli_run.sh: all checks passed"
