@@ -22,6 +22,7 @@ std::string rank_tag(const mpi::Comm& comm) {
 } // namespace
 
 void add_common_options(CLI::App& app, CommonOptions& options, const std::string& program) {
+  app.name(program); // error lines and the usage line name the program, not the path it ran from
   // Not CLI::ExistingFile: a missing config file is a file error (exit 3, docs/user-guide.md), not
   // a command-line one (2); config::load_file says which.
   app.add_option("--config", options.config_path, "TOML configuration file (defaults apply to missing keys)")
@@ -40,12 +41,16 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv, const mpi::Comm& 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    // CLI11 prints help/version on stdout and errors on stderr; only rank 0 speaks.
-    if (comm.is_root()) {
-      const int cli_code = app.exit(error);
-      return cli_code == 0 ? 0 : static_cast<int>(ExitCode::bad_input);
+    // CLI11 prints help and version on stdout; a command-line error gets the programs' own
+    // "program: error (bad input): ..." line, like every other error. Only rank 0 speaks.
+    if (error.get_exit_code() == 0) {
+      if (comm.is_root()) static_cast<void>(app.exit(error));
+      return 0;
     }
-    return error.get_exit_code() == 0 ? 0 : static_cast<int>(ExitCode::bad_input);
+    if (comm.is_root())
+      std::cerr << app.get_name() << ": error (" << exit_code_name(ExitCode::bad_input)
+                << "): " << error.what() << "\nRun with --help for more information." << std::endl;
+    return static_cast<int>(ExitCode::bad_input);
   }
   return std::nullopt;
 }
