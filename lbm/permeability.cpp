@@ -31,7 +31,8 @@ FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settin
                             "void voxels, joined by the D3Q19 links, wraps around it): the permeability "
                             "along x{} is zero and cannot be measured by flow. A coarse image closes "
                             "throats: check voxel.resolution",
-                            image.source.empty() ? "the image" : "the image of " + image.source, axis + 1, axis + 1));
+                            image.source.empty() ? "the image" : "the image of " + image.source, axis + 1,
+                            axis + 1));
   Topology topology;
   {
     ScopedStage stage(events, events.setup);
