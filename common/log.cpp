@@ -42,9 +42,10 @@ std::string format_duration(double seconds) {
   return fmt::format("{} s", total);
 }
 
-Progress::Progress(Logger logger, std::string label, double total, double interval_seconds, Clock clock)
-    : logger_(std::move(logger)), label_(std::move(label)), total_(total), interval_(interval_seconds),
-      clock_(clock ? std::move(clock) : Clock([] {
+Progress::Progress(Logger logger, std::string label, double total, double interval_seconds, Clock clock,
+                   double from)
+    : logger_(std::move(logger)), label_(std::move(label)), total_(total), from_(from),
+      interval_(interval_seconds), clock_(clock ? std::move(clock) : Clock([] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
       })),
       start_(clock_()), last_print_(start_) {}
@@ -52,7 +53,8 @@ Progress::Progress(Logger logger, std::string label, double total, double interv
 std::string Progress::line(double done) const {
   const double elapsed = clock_() - start_;
   const double fraction = total_ > 0 ? done / total_ : 0.0;
-  const double remaining = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : NAN;
+  const double advanced = done - from_;
+  const double remaining = advanced > 0 ? elapsed * (total_ - done) / advanced : NAN;
   return fmt::format("{}: {:.1f}% ({:.4g} of {:.4g}), elapsed {}, ETA {}", label_, 100.0 * fraction, done,
                      total_, format_duration(elapsed), format_duration(remaining));
 }

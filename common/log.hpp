@@ -28,8 +28,11 @@ class Progress {
 public:
   using Clock = std::function<double()>; ///< seconds, monotonic
 
-  /// Reports "label: done/total" at most every `interval_seconds` of wall-clock time.
-  Progress(Logger logger, std::string label, double total, double interval_seconds, Clock clock = {});
+  /// Reports "label: done/total" at most every `interval_seconds` of wall-clock time. `from` is
+  /// where this run starts (a resumed load's strain): the remaining time is estimated from the
+  /// pace since then, not from the whole way as if this run had done it all.
+  Progress(Logger logger, std::string label, double total, double interval_seconds, Clock clock = {},
+           double from = 0.0);
 
   /// Records progress `done` (same unit as total) and prints if the interval has passed. Returns true if
   /// printed.
@@ -41,6 +44,7 @@ private:
   Logger logger_;
   std::string label_;
   double total_;
+  double from_;
   double interval_;
   Clock clock_;
   double start_;

@@ -243,7 +243,7 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
       "load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s", rate,
       load.inertial_number, compressive_strain(simulation), load.final_strain,
       simulation.settings().time_step);
-  Progress progress(logger, "load", load.final_strain, 10.0);
+  Progress progress(logger, "load", load.final_strain, 10.0, {}, compressive_strain(simulation));
   for (double strain = compressive_strain(simulation); strain < load.final_strain;
        strain = compressive_strain(simulation)) {
     simulation.step();

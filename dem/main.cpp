@@ -138,7 +138,8 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const dem::LoadSummary summary =
       dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume, run_id);
   if (!summary.interrupted_checkpoint.empty()) return static_cast<int>(ExitCode::interrupted);
-  logger->info("load done: strain {:.4g} in {} steps ({} relaxing before checkpoints), {:.1f} s wall ({:.3g} "
+  logger->info("load done: strain {:.4g} in {} steps ({} of them relaxing, after increments and before "
+               "checkpoints), {:.1f} s wall ({:.3g} "
                "particle-steps/s); peak stress ratio {:.4f} at strain {:.4g}",
                summary.final_strain, summary.steps, summary.relaxation_steps, summary.wall_seconds,
                static_cast<double>(summary.steps) * static_cast<double>(simulation.n_particles()) /
