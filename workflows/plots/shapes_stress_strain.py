@@ -4,7 +4,7 @@ volumetric strain against -eps11, plus the void ratio and the mean particle-axis
 <a1 a1> (the share of the axes along the compression direction x1; 1/3 when isotropic).
 Writes shapes_stress_strain.png and shapes_stress_strain.csv (the numbers behind the plot).
 
-usage: shapes_stress_strain.py OUTPUT_PREFIX LABEL=HISTORY.h5 [LABEL=HISTORY.h5 ...]
+usage: shapes_stress_strain.py OUTPUT_PREFIX LABEL=HISTORY [LABEL=HISTORY ...]   (history.h5 or history.csv)
   e.g. shapes_stress_strain.py docs/charts/demo_shapes "alpha 1.0=runs/demo/history.h5" ...
 """
 import csv
