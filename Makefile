@@ -2,6 +2,8 @@
 #
 #   make demo        install missing Debian packages, build, run the default demo campaign
 #   make test        install missing Debian packages, build, run every test but the long ones, check formatting
+#   make campaign CONFIG=workflows/configs/paper-spheres.toml OUT=runs/paper-spheres
+#                    any campaign (paths from this folder), resumed where it stopped
 #   make test-long   the long tests only (label `long`)
 #   make format      rewrite all C++ sources with clang-format
 #   make clean       remove the build folder
@@ -18,7 +20,7 @@ TEST_JOBS  ?= 2
 # Open MPI refuses to run as root unless told it may (containers, CI machines).
 MPI_ENV := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-.PHONY: all demo test test-long format clean deps-test deps-demo configure build
+.PHONY: all demo campaign test test-long format clean deps-test deps-demo configure build
 
 all: build
 
@@ -37,6 +39,13 @@ build: configure
 demo: deps-demo
 	$(MAKE) build
 	$(MPI_ENV) $(MAKE) -C workflows demo BIN=$(abspath $(BUILD))
+
+# Paths are taken from this folder (workflows/Makefile resolves its own from workflows/).
+CONFIG ?= workflows/configs/demo.toml
+OUT    ?= runs/campaign
+campaign: deps-demo
+	$(MAKE) build
+	$(MPI_ENV) $(MAKE) -C workflows campaign CONFIG=$(abspath $(CONFIG)) OUT=$(abspath $(OUT)) BIN=$(abspath $(BUILD))
 
 test: deps-test
 	$(MAKE) build
