@@ -34,22 +34,24 @@ bool percolates(const h5::VoxelImage& image, int axis, const Faces& faces) {
   require_input(size < std::numeric_limits<std::uint32_t>::max(),
                 "percolation check: images of 2^32 voxels or more are not supported");
   const auto links = d3q19_links();
-  // Unwrapped offset of each reached void voxel, in periods along each axis; unreached voxels
-  // hold the sentinel. A path is at most `size` links long, so offsets fit in 32 bits.
+  // Unwrapped offset of each reached void voxel along `axis`, in periods (the other axes' offsets
+  // cannot reveal a wrap along this one); unreached voxels hold the sentinel. A path is at most
+  // `size` links long, so offsets fit in 32 bits: 4 bytes per voxel.
   constexpr std::int32_t unreached = std::numeric_limits<std::int32_t>::min();
-  std::vector<std::array<std::int32_t, 3>> offset(size, {unreached, 0, 0});
+  const auto along = static_cast<std::size_t>(axis);
+  std::vector<std::int32_t> offset(size, unreached);
   std::vector<std::uint32_t> queue;
   for (std::size_t seed = 0; seed < size; ++seed) {
-    if (image.phase[seed] != 0 || offset[seed][0] != unreached) continue;
-    offset[seed] = {0, 0, 0};
+    if (image.phase[seed] != 0 || offset[seed] != unreached) continue;
+    offset[seed] = 0;
     queue.assign(1, static_cast<std::uint32_t>(seed));
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const std::int64_t index = queue[head];
       const std::array<std::int64_t, 3> at{index % n[0], (index / n[0]) % n[1], index / (n[0] * n[1])};
-      const std::array<std::int32_t, 3> here = offset[static_cast<std::size_t>(index)];
+      const std::int32_t here = offset[static_cast<std::size_t>(index)];
       for (const auto& link : links) {
         std::array<std::int64_t, 3> to{};
-        std::array<std::int32_t, 3> lifted = here;
+        std::int32_t lifted = here;
         bool blocked = false;
         for (std::size_t a = 0; a < 3; ++a) {
           to[a] = at[a] + link[a];
@@ -60,15 +62,15 @@ bool percolates(const h5::VoxelImage& image, int axis, const Faces& faces) {
           }
           const std::int64_t shift = to[a] < 0 ? -1 : 1;
           to[a] -= shift * n[a];
-          lifted[a] += static_cast<std::int32_t>(shift);
+          if (a == along) lifted += static_cast<std::int32_t>(shift);
         }
         if (blocked) continue;
         const auto next = static_cast<std::size_t>(to[0] + n[0] * (to[1] + n[1] * to[2]));
         if (image.phase[next] != 0) continue;
-        if (offset[next][0] == unreached) {
+        if (offset[next] == unreached) {
           offset[next] = lifted;
           queue.push_back(static_cast<std::uint32_t>(next));
-        } else if (offset[next][static_cast<std::size_t>(axis)] != lifted[static_cast<std::size_t>(axis)]) {
+        } else if (offset[next] != lifted) {
           return true; // the same voxel reached one period apart: a path around the cell
         }
       }
