@@ -1,5 +1,6 @@
 // aniso-dem: periodic-cell DEM. `prepare` builds a dense isotropic assembly,
-// `load` runs biaxial plane strain at constant mean stress from it.
+// `load` runs biaxial plane strain at constant mean stress from it, `hold` measures
+// how static a checkpoint is and `relax` makes a loosely relaxed checkpoint static.
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
@@ -12,6 +13,7 @@
 #include "dem/io.hpp"
 #include "dem/load.hpp"
 #include "dem/prepare.hpp"
+#include "dem/relax.hpp"
 #include "dem/run_folder.hpp"
 #include "dem/settings.hpp"
 
@@ -43,6 +45,40 @@ int run_hold(const aniso::h5::Checkpoint& checkpoint, const std::string& input, 
   return 0;
 }
 
+// Relaxes a checkpoint with its own loading control (strain axes held, the mean-stress servo on)
+// to the verified equilibrium of dem.equilibrium and writes it to `output`: the static state that
+// the probes' stiffness assumes (paper section 4), from a checkpoint written at OVAL's looser
+// increment tolerance (docs/paper-comparison.md, section 4).
+int run_relax(const aniso::h5::Checkpoint& checkpoint, const std::string& input, const std::string& output,
+              const aniso::dem::DemConfig& config, const aniso::h5::Provenance& provenance,
+              const aniso::Logger& logger, const aniso::mpi::Comm& comm) {
+  using namespace aniso;
+  namespace fs = std::filesystem;
+  require_input(
+      fs::weakly_canonical(input) != fs::weakly_canonical(output),
+      fmt::format("relax: --output '{}' is the input: write the relaxed state to a new file, so that "
+                  "the loaded one is kept",
+                  output));
+  const fs::path folder = fs::path(output).parent_path();
+  if (!folder.empty()) create_output_folder(folder.string());
+  dem::Simulation simulation = dem::from_checkpoint(checkpoint, input, comm);
+  const auto void_ratio = [&] { return simulation.cell().volume() / simulation.solid_volume() - 1.0; };
+  const double p_before = mean_stress_compression_positive(simulation.stress());
+  const double e_before = void_ratio();
+  const dem::Relaxation relaxed = dem::relax_to_equilibrium(simulation, config.equilibrium,
+                                                            config.equilibrium.max_steps, logger, "relax");
+  h5::Checkpoint result = dem::to_checkpoint(simulation, config.particles.d50, checkpoint.rng_state);
+  result.run_id = checkpoint.run_id;
+  h5::write_checkpoint(output, result, provenance, comm);
+  logger->info(
+      "relax of '{}': {} steps, p {:.6g} -> {:.6g} Pa, void ratio {:.5f} -> {:.5f}, unbalanced-force "
+      "ratio {:.2e} -> {:.2e}, kinetic/elastic {:.2e}; wrote {}",
+      input, relaxed.steps, p_before, mean_stress_compression_positive(simulation.stress()), e_before,
+      void_ratio(), checkpoint.unbalanced_force_ratio, result.unbalanced_force_ratio,
+      result.kinetic_elastic_ratio, output);
+  return 0;
+}
+
 int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   using namespace aniso;
   CLI::App app{"aniso-dem: periodic-cell DEM of spheres and ovoids (Kuhn, Sun & Wang 2015, section 2)"};
@@ -56,7 +92,14 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
                                  "(writes <output_dir>/load_NNN.h5 and history.h5)");
   auto* hold = app.add_subcommand("hold", "hold a checkpoint's cell fixed for --steps time steps and report "
                                           "the drift of p (a static state keeps its stress)");
+  auto* relax = app.add_subcommand(
+      "relax", "relax a checkpoint at its own loading control to the verified equilibrium of "
+               "dem.equilibrium and write it to --output (a static state for the probes)");
   std::string input;
+  std::string output;
+  relax->add_option("--input", input, "checkpoint to relax (HDF5)")->required();
+  relax->add_option("--output", output, "relaxed checkpoint to write (HDF5; not the input)")->required();
+  relax->fallthrough();
   bool resume = false;
   std::int64_t hold_steps = 0;
   std::string hold_csv;
@@ -87,7 +130,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const Logger logger = make_logger("aniso-dem", comm, options.log_level);
 
   std::optional<h5::Checkpoint> checkpoint;
-  if (load->parsed() || hold->parsed()) {
+  if (load->parsed() || hold->parsed() || relax->parsed()) {
     checkpoint = h5::read_checkpoint(input, comm);
     logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->particles.size(),
                  checkpoint->contacts.size(), checkpoint->step);
@@ -106,9 +149,13 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   if (options.dry_run) return 0;
 
   if (hold->parsed()) return run_hold(*checkpoint, input, hold_steps, hold_csv, max_drift, logger, comm);
+  const std::string command = cli::join_command_line(argc, argv);
+  if (relax->parsed()) {
+    const auto provenance = h5::make_provenance("aniso-dem relax", reader.effective_toml(), command, comm);
+    return run_relax(*checkpoint, input, output, config, provenance, logger, comm);
+  }
   create_output_folder(config.output_dir);
   const dem::RunFolderLock lock(config.output_dir, comm); // one writer per folder
-  const std::string command = cli::join_command_line(argc, argv);
   if (prepare->parsed()) {
     const auto provenance = h5::make_provenance("aniso-dem prepare", reader.effective_toml(), command, comm);
     dem::PreparedAssembly prepared = dem::prepare_assembly(config, logger, comm);
