@@ -32,8 +32,10 @@ LbmConfig read_lbm_config(config::Reader& reader) {
   f.tolerance = reader.real("lbm.convergence.tolerance", 1e-5, "1", Range::open(0.0, 1.0),
                             "converged when the mean velocity changes by less than this fraction per check "
                             "interval");
-  f.check_interval = reader.integer("lbm.convergence.check_interval", 100, Range::closed(1, 1e6),
-                                    "steps between convergence and divergence checks");
+  f.check_interval =
+      reader.integer("lbm.convergence.check_interval", 100, Range::closed(2, 1e6),
+                     "steps between convergence and divergence checks (each check averages the "
+                     "flow over two consecutive steps)");
   f.max_steps = reader.integer("lbm.max_steps", 200000, Range::closed(1, 1e9),
                                "step limit of each flow run (ConvergenceError when reached)");
   f.max_mach = reader.real("lbm.divergence.max_mach", 0.1, "1", Range::open_closed(0.0, 1.0),

@@ -120,6 +120,15 @@ std::vector<double> gather_velocity(const Topology& topology, const std::vector<
   return velocity;
 }
 
+/// moments = (moments + before) / 2, node by node: the two-step mean of the fields.
+void average_into(std::vector<MomentsRecord>& moments, const std::vector<MomentsRecord>& before) {
+  for (std::size_t node = 0; node < moments.size(); ++node) {
+    moments[node].delta_rho = 0.5 * (moments[node].delta_rho + before[node].delta_rho);
+    for (std::size_t a = 0; a < 3; ++a)
+      moments[node].momentum[a] = 0.5 * (moments[node].momentum[a] + before[node].momentum[a]);
+  }
+}
+
 void check_divergence(const Totals& totals, double mach, double drift, std::int64_t step,
                       const FlowSettings& s) {
   const std::string where = fmt::format("{}: step {}", s.label, step);
@@ -155,7 +164,14 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   // Rest state, delta rho = 0, u = 0: all shifted populations are zero.
   std::vector<Real> a(topology.array_size(), Real(0));
   std::vector<Real> b(topology.array_size(), Real(0));
+  // Each check measures two consecutive steps (moments_before, then moments) and uses their mean:
+  // at a node where every link with a component along the force ends in solid, the force's
+  // momentum bounces back every step and never damps (+-F/2 in turn), so one step alone would
+  // count -F/2 per such node and make K depend on tau (issue 23). The two-step mean is zero there
+  // and leaves steady flow elsewhere unchanged.
   std::vector<MomentsRecord> moments(static_cast<std::size_t>(topology.n_fluid));
+  std::vector<MomentsRecord> moments_before(moments.size());
+  Totals totals_before;
   HaloExchange<Real> halo(topology, comm);
   const auto n_voxels = static_cast<double>(topology.n_voxels_global);
   const auto n_fluid = static_cast<double>(topology.n_fluid_global);
@@ -168,12 +184,15 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
       ScopedEvent event(events, events.halo);
       halo.exchange(a);
     }
-    const bool measure = step % s.check_interval == 0;
+    const bool check = step % s.check_interval == 0;
+    const bool before_check = (step + 1) % s.check_interval == 0;
+    const bool measure = check || before_check;
     {
       ScopedEvent event(events, events.stream_collide);
       if (measure)
         stream_collide<Real, true>(a.data(), b.data(), topology.source.data(), topology.n_fluid, force,
-                                   Real(rates.omega_plus), Real(rates.omega_minus), moments.data());
+                                   Real(rates.omega_plus), Real(rates.omega_minus),
+                                   check ? moments.data() : moments_before.data());
       else
         stream_collide<Real, false>(a.data(), b.data(), topology.source.data(), topology.n_fluid, force,
                                     Real(rates.omega_plus), Real(rates.omega_minus), nullptr);
@@ -181,11 +200,15 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
     std::swap(a, b);
     if (!measure) continue;
     ScopedEvent event(events, events.monitor);
-    const Totals totals = reduce_moments(moments, comm);
+    const Totals totals = reduce_moments(check ? moments : moments_before, comm);
     const double mach = totals.max_speed / std::sqrt(d3q19::cs2);
     const double drift = std::abs(totals.delta_rho) / n_fluid;
     check_divergence(totals, mach, drift, step, s);
-    const Vec3 mean = totals.momentum / n_voxels;
+    if (!check) {
+      totals_before = totals;
+      continue;
+    }
+    const Vec3 mean = 0.5 * (totals.momentum + totals_before.momentum) / n_voxels;
     const double change = (mean - previous).norm() / std::max(mean.norm(), 1e-300);
     previous = mean;
     logger->debug("{}: step {}: <j> = ({:.6e}, {:.6e}, {:.6e}), relative change {:.3e}, Mach {:.3e}", s.label,
@@ -205,6 +228,7 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
       result.relative_change = change;
       result.max_mach = mach;
       result.mass_drift = drift;
+      average_into(moments, moments_before);
       result.pressure_gradient = pressure_gradient(topology, moments, comm);
       if (s.keep_velocity) result.velocity = gather_velocity(topology, moments, comm);
       break;
@@ -219,7 +243,8 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
 FlowResult run_flow(const Topology& topology, const FlowSettings& settings, const mpi::Comm& comm,
                     const Logger& logger) {
   require_input(settings.tau > 0.5, fmt::format("lbm.tau = {} must be above 1/2", settings.tau));
-  require_input(settings.check_interval > 0, "lbm.convergence.check_interval must be positive");
+  require_input(settings.check_interval >= 2,
+                "lbm.convergence.check_interval must be at least 2 (each check averages two steps)");
   return settings.precision == Precision::float32 ? run_typed<float>(topology, settings, comm, logger)
                                                   : run_typed<double>(topology, settings, comm, logger);
 }

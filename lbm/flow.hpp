@@ -3,8 +3,11 @@
 // loop, the convergence criterion and the divergence checks.
 //
 // Convergence: every `check_interval` steps the mean momentum J (superficial,
-// over all voxels) is reduced exactly; the run has converged when
-// |J(t) - J(t - check_interval)| <= tolerance |J(t)|.
+// over all voxels) is reduced exactly, as the mean of two consecutive steps (a
+// node whose every link along the force ends in solid flips its momentum every
+// step and never damps; the mean removes it, issue 23); the run has converged when
+// |J(t) - J(t - check_interval)| <= tolerance |J(t)|. The result's fields are the
+// same two-step means.
 // Divergence: non-finite populations, a Mach number max|u|/c_s above
 // max_mach, or a drift of the mean density above mass_drift stop the run
 // with NumericalError naming the cause and the remedy. Reaching max_steps

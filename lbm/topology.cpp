@@ -115,8 +115,8 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
                 "the image has no void voxel: there is no pore space to flow through");
 
   // The streaming table (18 indices), two population arrays (19 values each, double at most) and
-  // the moments record per fluid voxel, before any of them is allocated.
-  constexpr double bytes_per_fluid_voxel = 18 * 4 + 2 * 19 * 8 + 4 * 8;
+  // the two moments records (lbm/flow.cpp) per fluid voxel, before any of them is allocated.
+  constexpr double bytes_per_fluid_voxel = 18 * 4 + 2 * 19 * 8 + 2 * 4 * 8;
   require_memory(bytes_per_fluid_voxel * static_cast<double>(topology.n_fluid),
                  fmt::format("lbm: {} fluid voxels on this rank", topology.n_fluid),
                  "use a coarser image or more ranks");

@@ -43,6 +43,34 @@ TEST(Flow, PermeabilityIndependentOfTauWithinOnePercent) {
   }
 }
 
+/// A plane channel along x1 (fluid 0 <= x2 < 6 of 12) with a dead-end groove one voxel wide in x1
+/// and `depth` deep cut into its wall. Below its mouth, the groove's nodes have solid at the end of
+/// every link with a component along the force (issue 23, the blocked-node oscillation).
+h5::VoxelImage channel_with_groove(std::size_t depth) {
+  h5::VoxelImage image = plane_channel(11, 8, 1); // 12 across x2 (fluid set below)
+  for (std::size_t k = 0; k < image.shape[2]; ++k)
+    for (std::size_t j = 0; j < 12; ++j)
+      for (std::size_t i = 0; i < image.shape[0]; ++i)
+        image.phase[image.index(i, j, k)] = (j < 6 || (i == 3 && j < 6 + depth)) ? 0 : 1;
+  return image;
+}
+
+TEST(Flow, BlockedNodesCarryNoFlowWhateverTau) {
+  // At a blocked node the force's momentum bounces back every step and never damps: sampled at
+  // one step it adds -F/2 per node, and K a term -nu n_blocked / (2 N) that grows with tau
+  // (-4% at tau = 10 here before the fix). The nodes below the mouth carry no flow, so a groove
+  // 5 deep must give the K of a groove 1 deep (its mouth alone), at every tau.
+  PermeabilitySettings settings = converged_settings();
+  settings.flow.tolerance = 1e-8;
+  for (double tau : {0.7, 1.0, 3.0, 10.0}) {
+    settings.flow.tau = tau;
+    const double mouth = axis_permeability(channel_with_groove(1), settings);
+    const double deep = axis_permeability(channel_with_groove(5), settings);
+    std::cout << "tau " << tau << ": K(groove 5 deep) / K(mouth only) - 1 = " << deep / mouth - 1 << "\n";
+    EXPECT_NEAR(deep / mouth, 1.0, 1e-3) << "tau " << tau;
+  }
+}
+
 TEST(Flow, SinglePrecisionAgreesWithDouble) {
   const h5::VoxelImage image = square_duct(12, 4, 0);
   PermeabilitySettings settings = converged_settings();
