@@ -120,6 +120,9 @@ std::vector<double> gather_velocity(const Topology& topology, const std::vector<
   return velocity;
 }
 
+/// A flux below this fraction of the run's largest one has decayed: no steady flow exists.
+constexpr double kDecayedFraction = 1e-3;
+
 /// moments = (moments + before) / 2, node by node: the two-step mean of the fields.
 void average_into(std::vector<MomentsRecord>& moments, const std::vector<MomentsRecord>& before) {
   for (std::size_t node = 0; node < moments.size(); ++node) {
@@ -179,6 +182,8 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   FlowResult result;
   Vec3 previous = Vec3::Zero();
   bool have_previous = false;
+  double peak = 0; // largest |<j>| of the run's checks
+  std::int64_t peak_step = 0;
   for (std::int64_t step = 1;; ++step) {
     {
       ScopedEvent event(events, events.halo);
@@ -211,6 +216,19 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
     const Vec3 mean = 0.5 * (totals.momentum + totals_before.momentum) / n_voxels;
     const double change = (mean - previous).norm() / std::max(mean.norm(), 1e-300);
     previous = mean;
+    if (mean.norm() > peak) {
+      peak = mean.norm();
+      peak_step = step;
+    }
+    // The change is relative to <j>, so a flux that decays to round-off changes by the same
+    // fraction forever and never converged (it ran to lbm.max_steps). A steady flow from rest
+    // never falls far below its largest value: one that does carries no flow.
+    if (!s.fixed_steps && mean.norm() < kDecayedFraction * peak)
+      throw ConvergenceError(fmt::format(
+          "{}: step {}: the mean flux has decayed to {:.3g} of its largest value (step {}): the force "
+          "drives no steady flow, so no permeability can be measured along it (the pore space carries "
+          "no flow along the force between the faces of the cell, or walls cut its paths)",
+          s.label, step, mean.norm() / peak, peak_step));
     logger->debug("{}: step {}: <j> = ({:.6e}, {:.6e}, {:.6e}), relative change {:.3e}, Mach {:.3e}", s.label,
                   step, mean[0], mean[1], mean[2], change, mach);
     const bool converged = have_previous && change <= s.tolerance && !s.fixed_steps;

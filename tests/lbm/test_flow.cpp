@@ -3,7 +3,9 @@
 #include "common/error.hpp"
 #include "common/log.hpp"
 #include "lbm/geometry.hpp"
+#include "lbm/partition.hpp"
 #include "lbm/permeability.hpp"
+#include "lbm/topology.hpp"
 #include "tests/lbm/petsc_environment.hpp"
 
 #include <gtest/gtest.h>
@@ -99,6 +101,28 @@ TEST(Flow, InstabilityIsDetectedAndNamed) {
         << message;
     EXPECT_NE(message.find("lbm.body_force"), std::string::npos) << message;
     EXPECT_EQ(error.code(), ExitCode::numerical_failure);
+  }
+}
+
+TEST(Flow, AFluxThatDecaysStopsEarlyWithItsCause) {
+  // Pushed against the plates of a channel, the fluid only sloshes and comes to rest: the
+  // relative change of a decaying flux never met the tolerance, and the run went to max_steps.
+  const h5::VoxelImage image = plane_channel(16, 4, 0);
+  const Index3 shape{17, 4, 4};
+  const Topology topology =
+      build_topology(image.phase, make_partition(shape, all_periodic, world), all_periodic, world);
+  FlowSettings settings = converged_settings().flow;
+  settings.force = Vec3(1e-6, 0, 0);
+  settings.max_steps = 1000000;
+  try {
+    static_cast<void>(run_flow(topology, settings, world, make_silent_logger()));
+    FAIL() << "a flow that decays to rest returned a result";
+  } catch (const ConvergenceError& error) {
+    const std::string message = error.what();
+    std::cout << message << "\n";
+    EXPECT_NE(message.find("decayed"), std::string::npos) << message;
+    const auto step = std::stoll(message.substr(message.find("step ") + 5));
+    EXPECT_LT(step, 20000) << "stopped only after " << step << " steps";
   }
 }
 
