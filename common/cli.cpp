@@ -11,12 +11,23 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <string_view>
 
 namespace aniso::cli {
 namespace {
 
 std::string rank_tag(const mpi::Comm& comm) {
   return comm.size() > 1 ? fmt::format(" (rank {})", comm.rank()) : std::string();
+}
+
+// --print-config shows the configuration without doing anything, so it needs no input file and
+// no subcommand: a campaign validates every stage's section with it before the DEM starts.
+void drop_requirements(CLI::App& app) {
+  for (CLI::Option* option : app.get_options())
+    option->required(false);
+  app.require_subcommand(0);
+  for (CLI::App* subcommand : app.get_subcommands({}))
+    drop_requirements(*subcommand);
 }
 
 } // namespace
@@ -39,6 +50,8 @@ void add_common_options(CLI::App& app, CommonOptions& options, const std::string
 
 std::optional<int> parse(CLI::App& app, int argc, char** argv, const mpi::Comm& comm) {
   try {
+    for (int i = 1; i < argc; ++i)
+      if (std::string_view(argv[i]) == "--print-config") drop_requirements(app);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     // CLI11 prints help and version on stdout; a command-line error gets the programs' own

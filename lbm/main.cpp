@@ -93,13 +93,13 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   collect->add_option("--input", input, "the voxel image the direction runs used (names the files)");
   collect->fallthrough();
   if (auto code = cli::parse(app, argc, argv, comm)) return *code;
-  require_input(!input.empty(), "--input is required (the voxel image, HDF5)");
 
   const auto source = cli::load_config(options);
   config::Reader reader(source.table, source.name);
   reader.tolerate_sections({"dem", "fabric", "probe", "voxel", "workflow"});
   const lbm::LbmConfig config = lbm::read_lbm_config(reader);
   if (cli::finish_config(reader, options, comm)) return 0;
+  require_input(!input.empty(), "--input is required (the voxel image, HDF5)");
   const Logger logger = make_logger("aniso-lbm", comm, options.log_level);
 
   if (collect->parsed()) return collect_directions(input, config, options, comm);

@@ -7,6 +7,9 @@ usage:
                                        with STAGE (probe, voxel or lbm) only those [workflow] gives that stage
   campaign.py stages BIN               the analysis stages built with the command line the workflow calls
   campaign.py load-input OUT CONFIG    the arguments of `aniso-dem load` that continue an interrupted run
+  campaign.py check CONFIG BIN         validates the whole config before any stage runs: every built stage
+                                       reads its own section (`--print-config`, the stage's own validator)
+                                       and the [workflow] section is checked against the checkpoints
 
 `stages` prints one word per usable stage, then the optional command lines
 they offer (lbm-directions: one LBM run per flow direction); for every other
@@ -75,7 +78,7 @@ def checkpoint_strains(config, bin_dir):
     dem = os.path.join(bin_dir, "dem", "aniso-dem")
     if not os.access(dem, os.X_OK):
         fail(f"{dem} not found: build it first (make build)", FILE_ERROR)
-    printed = subprocess.run([dem, "prepare", "--config", config, "--print-config", "--log-level", "error"],
+    printed = subprocess.run([dem, "--config", config, "--print-config", "--log-level", "error"],
                              capture_output=True, text=True)
     if printed.returncode != 0:
         fail(f"'{dem} prepare --config {config} --print-config' failed:\n{printed.stderr.rstrip()}",
@@ -134,6 +137,26 @@ def checkpoint_stems(config, bin_dir, stage=None):
             fail(f"no checkpoint selection for stage {stage!r}; allowed: {', '.join(SELECTING_STAGES)}")
         indices = selected_indices(config, strains)[SELECTING_STAGES[stage]]
     return [f"load_{index:03d}" for index in indices]
+
+
+def check_config(config, bin_dir):
+    """Every built stage validates its section of CONFIG, so that a misspelt [lbm] key stops the
+    campaign before hours of DEM rather than when the LBM job starts."""
+    executables = [("dem", "dem/aniso-dem")] + [(stage, relative) for stage, (relative, _) in STAGE_INTERFACES.items()]
+    checked = []
+    for stage, relative in executables:
+        executable = os.path.join(bin_dir, relative)
+        if not os.access(executable, os.X_OK):
+            continue  # `stages` says why it is skipped
+        printed = subprocess.run([executable, "--config", config, "--print-config", "--log-level", "error"],
+                                 capture_output=True, text=True)
+        if printed.returncode != 0:
+            fail(f"the [{stage}] section of {config} is refused by {os.path.basename(executable)}, "
+                 f"before any stage runs:\n{printed.stderr.rstrip()}",
+                 printed.returncode if printed.returncode in ERROR_KINDS else BAD_INPUT)
+        checked.append(stage)
+    selected_indices(config, checkpoint_strains(config, bin_dir))
+    print(f"campaign: {config} is valid for {', '.join(checked)} and [workflow]", file=sys.stderr)
 
 
 def help_text(executable, arguments):
@@ -224,6 +247,8 @@ def main(argv):
         print(" ".join(checkpoint_stems(*argv[2:])))
     elif len(argv) == 3 and argv[1] == "stages":
         print(" ".join(usable_stages(argv[2])))
+    elif len(argv) == 4 and argv[1] == "check":
+        check_config(argv[2], argv[3])
     elif len(argv) == 4 and argv[1] == "load-input":
         print(" ".join(load_input(argv[2], argv[3])))
     else:

@@ -42,7 +42,11 @@ def main():
     parser.add_argument("--direction", type=int)
     for results in ("--probe", "--voids", "--permeability"):
         parser.add_argument(results, nargs="+", default=[])
+    parser.add_argument("--print-config", action="store_true")  # campaign.py check: accepts any config
+    parser.add_argument("--log-level")
     args = parser.parse_args()
+    if args.print_config:
+        return
     settings = dict(s.split("=", 1) for s in args.set)
     out = settings[f"{args.stage}.output_dir"]
     source = args.input[0]

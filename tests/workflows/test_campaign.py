@@ -133,6 +133,8 @@ class Stages(unittest.TestCase):
             dry = subprocess.run([os.path.join(BUILD, "dem", "aniso-dem"), "prepare", "--config", config, "--dry-run",
                                   "--log-level", "error"], capture_output=True, text=True)
             self.assertEqual(dry.returncode, 0, f"{config}: {dry.stderr}")
+            checked = campaign("check", config, BUILD)  # every stage's section
+            self.assertEqual(checked.returncode, 0, f"{config}: {checked.stderr}")
             for stage in ("probe", "voxel", "lbm"):
                 result = campaign("checkpoints", config, BUILD, stage)
                 self.assertEqual(result.returncode, 0, f"{config}: {result.stderr}")
@@ -209,6 +211,56 @@ class CheckpointSelection(unittest.TestCase):
         self.assertEqual(names, ["prepare", "load", "fabric", "voxel-load_000", "probe-load_002",
                                  "probe-collect-load_002", "voxel-load_002", "lbm-load_002", "lbm-collect-load_002",
                                  "series", "report"])
+
+
+class WholeConfigCheck(unittest.TestCase):
+    """A misspelt key of a later stage stops the campaign before the DEM starts (issue 24)."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        with open(os.path.join(WORKFLOWS, "configs", "e2e.toml")) as f:
+            text = f.read()
+        self.config = os.path.join(self.dir.name, "c.toml")
+        with open(self.config, "w") as f:
+            f.write(text + "\n[lbm]\ntua = 1.0\n")
+        self.out = os.path.join(self.dir.name, "run")
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def assert_refused(self, result):
+        self.assertEqual(result.returncode, 2, result.stdout + result.stderr)
+        self.assertIn(f"the [lbm] section of {self.config} is refused by aniso-lbm", result.stderr)
+        self.assertIn("unknown config key 'lbm.tua'", result.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.out, "prepared.h5")), "the DEM ran")
+
+    def test_check_names_the_stage_and_the_key(self):
+        self.assert_refused(campaign("check", self.config, BUILD))
+        valid = campaign("check", os.path.join(WORKFLOWS, "configs", "e2e.toml"), BUILD)
+        self.assertEqual(valid.returncode, 0, valid.stderr)
+        self.assertIn("is valid for dem, fabric, probe, voxel, lbm and [workflow]", valid.stderr)
+
+    def test_make_stops_before_the_dem(self):
+        result = subprocess.run(["make", "-s", "-C", WORKFLOWS, "campaign", f"CONFIG={self.config}",
+                                 f"OUT={self.out}", f"BIN={BUILD}"], capture_output=True, text=True)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("unknown config key 'lbm.tua'", result.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.out, "prepared.h5")), "the DEM ran")
+
+    def test_submit_stops_before_submitting(self):
+        result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config",
+                                 self.config, "--out", self.out, "--bin", BUILD, "--dry-run"],
+                                capture_output=True, text=True)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("unknown config key 'lbm.tua'", result.stderr)
+        self.assertNotIn("sbatch", result.stdout)
+
+    def test_every_stage_prints_its_config_without_an_input(self):
+        for stage in ("dem", "fabric", "probe", "voxel", "lbm"):
+            printed = subprocess.run([os.path.join(BUILD, stage, f"aniso-{stage}"), "--print-config"],
+                                     capture_output=True, text=True)
+            self.assertEqual(printed.returncode, 0, f"{stage}: {printed.stderr}")
+            self.assertIn(f"[{stage}", printed.stdout, stage)
 
 
 class SubmitDryRun(unittest.TestCase):

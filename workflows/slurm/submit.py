@@ -70,6 +70,7 @@ def campaign_facts(args):
             fail(f"campaign.py {' '.join(words)} failed")
         return result.stdout.strip()
 
+    ask("check", args.config, args.bin)  # every stage's section, before any job is submitted
     facts = {"CHECKPOINTS": ask("checkpoints", args.config, args.bin), "STAGES": ask("stages", args.bin)}
     for stage in ("probe", "voxel", "lbm"):  # the checkpoints the config's [workflow] gives each stage
         facts[f"{stage.upper()}_CHECKPOINTS"] = ask("checkpoints", args.config, args.bin, stage)
