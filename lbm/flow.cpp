@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <utility>
@@ -180,6 +181,11 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   const auto n_fluid = static_cast<double>(topology.n_fluid_global);
 
   FlowResult result;
+  // Progress in decades of the relative change, towards the tolerance: the flux converges about
+  // exponentially, so decades come at a steady pace and the ETA holds (issue 23: the LBM printed
+  // nothing for minutes).
+  const double decades_to_go = -std::log10(s.tolerance);
+  Progress progress(logger, s.label, decades_to_go, 30.0);
   Vec3 previous = Vec3::Zero();
   bool have_previous = false;
   double peak = 0; // largest |<j>| of the run's checks
@@ -231,6 +237,10 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
           s.label, step, mean.norm() / peak, peak_step));
     logger->debug("{}: step {}: <j> = ({:.6e}, {:.6e}, {:.6e}), relative change {:.3e}, Mach {:.3e}", s.label,
                   step, mean[0], mean[1], mean[2], change, mach);
+    if (have_previous && !s.fixed_steps &&
+        progress.update(std::clamp(-std::log10(std::max(change, 1e-300)), 0.0, decades_to_go)))
+      logger->info("{}: step {}, <j> changes by {:.2e} per {} steps (converged at {:.1e})", s.label, step,
+                   change, s.check_interval, s.tolerance);
     const bool converged = have_previous && change <= s.tolerance && !s.fixed_steps;
     have_previous = true;
     if (converged || step + s.check_interval > s.max_steps) {
