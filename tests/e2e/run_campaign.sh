@@ -20,6 +20,14 @@ for f in prepared.h5 load_000.h5 load_001.h5 load_002.h5 history.h5 history.csv 
   [ -s "$run/$f" ] || fail "missing output $f"
 done
 ! grep -q 'campaign: skipping' "$work/campaign.log" || fail "the campaign skipped a stage: $(grep 'skipping' "$work/campaign.log")"
+# Each stage run keeps its own log in logs/, and its lines are prefixed with the run's name there
+# and in the campaign's output (issue 24).
+for name in prepare load fabric probe_load_002_fork3 probe_collect_load_002 voxel_load_001 lbm_load_002 fabric_series; do
+  log=$(ls "$run/logs/$name"*.log 2>/dev/null | head -1)
+  [ -s "$log" ] || fail "no log of $name in logs/"
+  ! grep -qv "^\[$name" "$log" || fail "a line of $log lacks the prefix [$name]: $(grep -v "^\[$name" "$log" | head -1)"
+done
+grep -q '^\[load\] .*info load done' "$work/campaign.log" || fail "the campaign's output lacks '[load] ... load done'"
 h5dump -H "$run/load_001.h5" > "$work/load_001.header" || fail "h5dump -H cannot read load_001.h5"
 grep -q 'schema_version' "$work/load_001.header" || fail "checkpoint header lacks schema_version"
 h5dump -H "$run/history.h5" > /dev/null || fail "h5dump -H cannot read history.h5"

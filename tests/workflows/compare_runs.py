@@ -13,7 +13,7 @@ is replaced by RUN before comparing. Otherwise:
   columns: they identify the input or time the run.
 - CSV files: cell by cell, without the NOT_RESULTS columns.
 - Every other file: byte for byte (PNG figures included).
-Job logs (slurm/), the load.done stamp and hidden files are not results.
+Job logs (slurm/), the stages' logs (logs/), the load.done stamp and hidden files are not results.
 """
 import csv
 import os
@@ -97,7 +97,7 @@ def main(root_a, root_b):
     root_a, root_b = os.path.abspath(root_a), os.path.abspath(root_b)
     compared, differing = 0, 0
     for folder, subfolders, files in os.walk(root_a):
-        subfolders[:] = sorted(d for d in subfolders if not (folder == root_a and d == "slurm"))
+        subfolders[:] = sorted(d for d in subfolders if not (folder == root_a and d in ("slurm", "logs")))
         for name in sorted(files):
             if name.startswith(".") or (folder == root_a and name == "load.done"):
                 continue
