@@ -178,7 +178,7 @@ def permeability_section(folder):
 def main(folder):
     h = read_history(f"{folder}/history.h5")
     print("# aniso campaign report\n")
-    print(f"Run folder: `{folder}`\n")
+    print(f"Run folder: `{os.path.abspath(folder)}`\n")  # the make campaign passes it relative to workflows/
     peak = dem_section(folder, h)
     ranking = fabric_section(folder)
     c11 = probe_section(folder)
