@@ -121,6 +121,11 @@ std::vector<double> gather_velocity(const Topology& topology, const std::vector<
   return velocity;
 }
 
+double permeability_reynolds(double flux, double force, double viscosity) {
+  if (!(force > 0)) return 0;
+  return flux * std::sqrt(viscosity * flux / force) / viscosity;
+}
+
 /// A flux below this fraction of the run's largest one has decayed: no steady flow exists.
 constexpr double kDecayedFraction = 1e-3;
 
@@ -255,6 +260,7 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
       result.steps = step;
       result.relative_change = change;
       result.max_mach = mach;
+      result.reynolds = permeability_reynolds(mean.norm(), s.force.norm(), s.viscosity());
       result.mass_drift = drift;
       average_into(moments, moments_before);
       result.pressure_gradient = pressure_gradient(topology, moments, comm);

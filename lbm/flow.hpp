@@ -49,6 +49,9 @@ struct FlowResult {
   std::int64_t steps = 0;
   double relative_change = 0;
   double max_mach = 0;
+  /// Permeability Reynolds number |<j>| sqrt(K) / nu with K = nu |<j>| / |F| (Darcy velocity and
+  /// sqrt(K) as length): inertia biases K by about -2e-3 Re^2 (docs/methods/lbm.md).
+  double reynolds = 0;
   double mass_drift = 0;
   double seconds = 0;
   std::vector<double> velocity; ///< rank 0, keep_velocity only: u per voxel, 3 values, x1 fastest, 0 in solid

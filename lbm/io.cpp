@@ -69,13 +69,14 @@ std::int64_t walls_code(FaceKind walls) {
 
 void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
   std::vector<std::int64_t> axis, walls, steps;
-  std::vector<double> momentum, gradient, seconds;
+  std::vector<double> momentum, gradient, seconds, reynolds;
   std::string names;
   for (const FlowRun& run : runs) {
     axis.push_back(run.axis + 1);
     walls.push_back(walls_code(run.walls));
     steps.push_back(run.result.steps);
     seconds.push_back(run.result.seconds);
+    reynolds.push_back(run.result.reynolds);
     for (Eigen::Index a = 0; a < 3; ++a) {
       momentum.push_back(run.result.mean_momentum[a]);
       gradient.push_back(run.result.pressure_gradient[a]);
@@ -91,6 +92,8 @@ void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
                                          "side faces: 0 periodic, 1 no-slip, 2 free-slip");
   group_runs.write_dataset<std::int64_t>("steps", steps, {n_runs}, "1", "time steps to convergence");
   group_runs.write_dataset<double>("seconds", seconds, {n_runs}, "s", "wall time of the run");
+  group_runs.write_dataset<double>("reynolds", reynolds, {n_runs}, "1",
+                                   "permeability Reynolds number |<j>| sqrt(K) / nu, K = nu |<j>| / |F|");
   group_runs.write_dataset<double>("mean_momentum", momentum, {n_runs, 3}, "lattice",
                                    "superficial momentum <j> (mean over all voxels) at convergence");
   group_runs.write_dataset<double>("pressure_gradient", gradient, {n_runs, 3}, "lattice",
@@ -199,6 +202,9 @@ DirectionFile read_direction(const std::string& path) {
   const auto walls = runs.read_dataset<std::int64_t>("walls", {n});
   const auto steps = runs.read_dataset<std::int64_t>("steps", {n});
   const auto seconds = runs.read_dataset<double>("seconds", {n});
+  // Written since 2026-12-03; older files read as NaN (not recorded).
+  const auto reynolds = runs.has_child("reynolds") ? runs.read_dataset<double>("reynolds", {n})
+                                                   : std::vector<double>(n, std::nan(""));
   const auto momentum = runs.read_dataset<double>("mean_momentum", {n, 3});
   const auto gradient = runs.read_dataset<double>("pressure_gradient", {n, 3});
   for (std::size_t r = 0; r < n; ++r) {
@@ -211,6 +217,7 @@ DirectionFile read_direction(const std::string& path) {
         walls[r] == 0 ? FaceKind::periodic : (walls[r] == 1 ? FaceKind::no_slip : FaceKind::free_slip);
     run.result.steps = steps[r];
     run.result.seconds = seconds[r];
+    run.result.reynolds = reynolds[r];
     for (std::size_t a = 0; a < 3; ++a) {
       run.result.mean_momentum[static_cast<Eigen::Index>(a)] = momentum[3 * r + a];
       run.result.pressure_gradient[static_cast<Eigen::Index>(a)] = gradient[3 * r + a];

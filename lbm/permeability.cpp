@@ -10,6 +10,8 @@
 #include <Eigen/QR>
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace aniso::lbm {
 namespace {
 
@@ -45,12 +47,20 @@ FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settin
   flow.label = fmt::format("flow along x{} ({} side faces)", axis + 1, to_string(walls));
   FlowRun run{axis, walls, run_flow(topology, flow, comm, logger)};
   logger->info(
-      "{}: converged in {} steps ({:.1f} s, {:.3g} MFLUPS), <j> = ({:.4e}, {:.4e}, {:.4e}), Mach {:.2e}",
+      "{}: converged in {} steps ({:.1f} s, {:.3g} MFLUPS), <j> = ({:.4e}, {:.4e}, {:.4e}), Mach {:.2e}, "
+      "Reynolds number {:.2e}",
       flow.label, run.result.steps, run.result.seconds,
       static_cast<double>(run.result.steps) * static_cast<double>(topology.n_fluid_global) /
           run.result.seconds * 1e-6,
       run.result.mean_momentum[0], run.result.mean_momentum[1], run.result.mean_momentum[2],
-      run.result.max_mach);
+      run.result.max_mach, run.result.reynolds);
+  if (run.result.reynolds > kStokesReynoldsLimit)
+    logger->warn(
+        "{}: the Reynolds number |<j>| sqrt(K) / nu is {:.3g}, above {:.2g}: inertia biases K by about "
+        "{:.2g}% (-2e-3 Re^2, docs/methods/lbm.md); lower lbm.body_force by {:.0f}x for Stokes flow",
+        flow.label, run.result.reynolds, kStokesReynoldsLimit,
+        -0.2 * run.result.reynolds * run.result.reynolds,
+        std::ceil(run.result.reynolds / (0.2 * kStokesReynoldsLimit)));
   return run;
 }
 
