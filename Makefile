@@ -20,7 +20,7 @@ TEST_JOBS  ?= 2
 # Open MPI refuses to run as root unless told it may (containers, CI machines).
 MPI_ENV := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-.PHONY: all demo campaign test test-long format clean deps-test deps-demo configure build
+.PHONY: all demo campaign test test-long format clean deps-test deps-demo configure build build-stages
 
 all: build
 
@@ -36,15 +36,20 @@ configure:
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)
 
+# The five programs a campaign runs, without the tests: what the demo and a campaign need.
+STAGE_PROGRAMS := aniso-dem aniso-fabric aniso-probe aniso-voxel aniso-lbm
+build-stages: configure
+	cmake --build $(BUILD) -j$(JOBS) --target $(STAGE_PROGRAMS)
+
 demo: deps-demo
-	$(MAKE) build
+	$(MAKE) build-stages
 	$(MPI_ENV) $(MAKE) -C workflows demo BIN=$(abspath $(BUILD))
 
 # Paths are taken from this folder (workflows/Makefile resolves its own from workflows/).
 CONFIG ?= workflows/configs/demo.toml
 OUT    ?= runs/campaign
 campaign: deps-demo
-	$(MAKE) build
+	$(MAKE) build-stages
 	$(MPI_ENV) $(MAKE) -C workflows campaign CONFIG=$(abspath $(CONFIG)) OUT=$(abspath $(OUT)) BIN=$(abspath $(BUILD))
 
 test: deps-test
