@@ -264,6 +264,34 @@ class WholeConfigCheck(unittest.TestCase):
 
 
 class SubmitDryRun(unittest.TestCase):
+    def test_only_the_missing_array_tasks_are_resubmitted(self):
+        # A finished load whose probe fork 3 of load_001 was deleted: that one task goes again, not
+        # the whole 7-task array (issue 24).
+        with tempfile.TemporaryDirectory() as folder:
+            bin_dir, out = os.path.join(folder, "bin"), os.path.join(folder, "run")
+            os.mkdir(bin_dir)
+            os.mkdir(out)
+            fake_bin(bin_dir, doubles=["fabric", "probe", "voxel", "lbm"])
+            config = os.path.join(folder, "c.toml")
+            with open(os.path.join(WORKFLOWS, "configs", "e2e.toml")) as f, open(config, "w") as g:
+                g.write(f.read())
+            start = os.path.getmtime(config)
+            for name, age in [("prepared.h5", 10), ("load.done", 20)] + [(f"load_00{k}.h5", 20) for k in range(3)]:
+                touch(os.path.join(out, name), start + age)
+            for k in range(7):
+                if k != 3:
+                    touch(os.path.join(out, f"probe_load_001_fork{k}.h5"), start + 30)
+            result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config", config,
+                                     "--out", out, "--bin", bin_dir, "--dry-run"], capture_output=True, text=True)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            plan = {re.search(r"--job-name=aniso-(\S+)", line).group(1): line for line in result.stdout.splitlines()}
+            self.assertNotIn("prepare", plan)
+            self.assertNotIn("load", plan)
+            self.assertIn("--array=3 ", plan["probe-load_001"])
+            self.assertIn("--array=0-6 ", plan["probe-load_000"])
+            self.assertIn("--dependency=afterok:<probe-load_001>", plan["probe-collect-load_001"])
+
+
     def test_plan_has_arrays_and_dependencies(self):
         with tempfile.TemporaryDirectory() as folder:
             bin_dir = os.path.join(folder, "bin")

@@ -12,7 +12,8 @@ runs all directions at once)}, fabric after the load, the fabric series after
 every analysis, and the figures and report last. Each job runs
 `make <its targets>` (slurm/make-step.sh), so a job's output is exactly what a
 local `make campaign` writes, and resubmitting after a failure or a kill
-submits only the steps whose files are missing or out of date.
+submits only the steps whose files are missing or out of date, and of a job
+array only the tasks whose files are (--array=3 when one probe fork is lost).
 
 Stages that are not built yet are left out with one line each on stderr.
 MPI steps get --ntasks=N (--ranks, default 1), serial ones 1 task. Cluster
@@ -56,10 +57,14 @@ class Step:
         self.targets = fields[4:]
         self.job_id = None
 
+        self.indices = list(range(self.tasks))  # the array tasks to submit
+
+    def task_targets(self, k):
+        return [t.replace("{task}", str(k)) for t in self.targets]
+
     def expanded_targets(self):
         """The files of every array task."""
-        return [t.replace("{task}", str(k)) for t in self.targets for k in range(self.tasks)] \
-            if self.tasks > 1 else list(self.targets)
+        return [t for k in range(self.tasks) for t in self.task_targets(k)] if self.tasks > 1 else list(self.targets)
 
 
 def campaign_facts(args):
@@ -96,8 +101,8 @@ def read_plan(variables):
     return steps
 
 
-def up_to_date(step, variables):
-    return subprocess.run(["make", "-q", "-C", WORKFLOWS, *variables, *step.expanded_targets()],
+def up_to_date(targets, variables):
+    return subprocess.run(["make", "-q", "-C", WORKFLOWS, *variables, *targets],
                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode == 0
 
 
@@ -110,7 +115,8 @@ def sbatch_command(step, waits_for, args, variables, log_dir):
     command = ["sbatch", "--parsable", f"--job-name=aniso-{step.name}", f"--output={log}",
                f"--ntasks={args.ranks if step.mpi else 1}"]
     if step.tasks > 1:
-        command.append(f"--array=0-{step.tasks - 1}")
+        whole = step.indices == list(range(step.tasks))
+        command.append(f"--array=0-{step.tasks - 1}" if whole else "--array=" + ",".join(map(str, step.indices)))
     job_ids = [s.job_id for s in waits_for if s.job_id]
     if job_ids:
         # --kill-on-invalid-dep: a failed upstream job cancels this one instead of leaving it pending
@@ -126,9 +132,13 @@ def submit(steps, args, variables):
     submitted = []
     for index, step in enumerate(steps):
         waits_for = upstream(step, steps[:index])
-        if not any(s.job_id for s in waits_for) and up_to_date(step, variables):
-            say(f"{step.name}: up to date, not submitted")
-            continue
+        if not any(s.job_id for s in waits_for):
+            # Nothing upstream reruns: only the array tasks whose files are missing or stale go again
+            # (one deleted probe fork resubmits that fork, not all seven).
+            step.indices = [k for k in range(step.tasks) if not up_to_date(step.task_targets(k), variables)]
+            if not step.indices:
+                say(f"{step.name}: up to date, not submitted")
+                continue
         command = sbatch_command(step, waits_for, args, variables, log_dir)
         if args.dry_run:
             print(shlex.join(command))
@@ -144,7 +154,9 @@ def submit(steps, args, variables):
         submitted.append(step)
         with open(os.path.join(log_dir, "jobs.tsv"), "a") as table:  # at once: a later refusal keeps it
             table.write(f"{step.name}\t{step.job_id}\t{step.tasks}\t{' '.join(step.targets)}\n")
-        say(f"{step.name}: job {step.job_id}" + (f" (array of {step.tasks})" if step.tasks > 1 else "")
+        say(f"{step.name}: job {step.job_id}"
+            + (f" (array of {step.tasks})" if step.tasks > 1 and len(step.indices) == step.tasks else "")
+            + (f" (tasks {','.join(map(str, step.indices))} of {step.tasks})" if len(step.indices) < step.tasks else "")
             + (f", after {','.join(s.job_id for s in waits_for if s.job_id)}"
                if any(s.job_id for s in waits_for) else ""))
     return submitted
