@@ -7,8 +7,9 @@ Pearson correlations c1, c2 of C11 - C33 and C22 - C33 with each contact fabric 
 (H^c_11 - H^c_33)/(tr H^c / 3) (paper: about 4.1 at every strain) and the large-strain
 (C11 - C33)/K_C (paper: 1.4 - 2.1). Prints Markdown tables (docs/paper-comparison.md).
 
-usage: paper_stiffness.py OUTPUT_PREFIX LABEL=PROBE_CSV_FOLDER,FABRIC_SERIES.csv [...]
-  writes OUTPUT_PREFIX_C123.png (first shape) and OUTPUT_PREFIX_A.png (all shapes)
+usage: paper_stiffness.py OUTPUT_PREFIX LABEL=PROBE_CSV_FOLDER,FABRIC_SERIES.csv[,MAX_STRAIN] [...]
+  writes OUTPUT_PREFIX_C123.png (first shape) and OUTPUT_PREFIX_A.png (all shapes); MAX_STRAIN
+  (a fraction) keeps only the checkpoints up to that loading strain
 """
 import csv
 import glob
@@ -49,9 +50,9 @@ def read_fabric(path):
                 for row in csv.DictReader(f)}
 
 
-def shape_series(probe_folder, fabric_csv):
+def shape_series(probe_folder, fabric_csv, max_strain="inf"):
     probes, fabric = read_probes(probe_folder), read_fabric(fabric_csv)
-    stems = sorted((s for s in probes if s in fabric), key=lambda s: probes[s][0])
+    stems = sorted((s for s in probes if s in fabric and probes[s][0] <= float(max_strain)), key=lambda s: probes[s][0])
     strain = np.array([probes[s][0] for s in stems])
     K = np.array([probes[s][1] for s in stems])
     C = np.array([probes[s][2] for s in stems])

@@ -1,0 +1,30 @@
+#!/bin/bash
+# Issue 21, section 4: relax each paper-size checkpoint of a shape to the verified equilibrium
+# (aniso-dem relax), then probe the relaxed state. Two checkpoints at a time.
+# usage: workflows/relax_and_probe.sh SHAPE [STEM ...] (spheres, ovoids-0.8, ...; default every checkpoint)
+# RELAX_ARGS adds --set options to the relaxation (the critical state creeps: looser tolerances).
+cd "$(dirname "$0")/.."  # the repository root
+s=$1
+d=runs/paper-$s
+mkdir -p $d/relaxed
+one() {
+  f=$1 s=$2 d=$3
+  stem=$(basename $f .h5)
+  r=$d/relaxed/$stem.h5
+  if [ ! -f $r ]; then
+    start=$(date +%s)
+    nice -n 5 build/dem/aniso-dem relax --config workflows/configs/paper-$s.toml --set dem.equilibrium.max_steps=1000000 $RELAX_ARGS \
+      --input $f --output $r --log-level info > $d/relaxed/relax_$stem.log 2>&1 || { echo "RELAX FAILED $f" >> $d/relaxed/relax.log; return; }
+    echo "$stem relax $(( $(date +%s) - start )) s" >> $d/relaxed/times.log
+  fi
+  [ -f $d/relaxed/probe_$stem.h5 ] && return
+  start=$(date +%s)
+  nice -n 5 build/probe/aniso-probe run --config workflows/configs/paper-$s.toml --set probe.output_dir=$d/relaxed \
+    --input $r --log-level warn >> $d/relaxed/probe.log 2>&1 || echo "PROBE FAILED $r" >> $d/relaxed/probe.log
+  echo "$stem probe $(( $(date +%s) - start )) s" >> $d/relaxed/times.log
+}
+export -f one
+export RELAX_ARGS
+shift
+if [ $# -gt 0 ]; then files=$(for stem in "$@"; do echo $d/$stem.h5; done); else files=$(ls $d/load_0*.h5); fi
+echo "$files" | xargs -P 2 -I{} bash -c "one {} $s $d"
