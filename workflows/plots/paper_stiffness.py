@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The paper's section 4 at paper size, from committed CSVs: Fig. C123 (C11, C22, C33 over K_C
-against strain, with a small-strain inset), Fig. A (the stiffness anisotropies (C11 - C33)/K_C
-and (C22 - C33)/K_C of every shape given, with insets), and the numbers the text states: the
+against strain, with the small-strain inset as a panel beside it), Fig. A (the stiffness anisotropies (C11 - C33)/K_C
+and (C22 - C33)/K_C of every shape given, with small-strain panels), and the numbers the text states: the
 Pearson correlations c1, c2 of C11 - C33 and C22 - C33 with each contact fabric (paper: H^c best,
 0.985 / 0.981 averaged over four shapes), the ratio of (C11 - C33)/K_C to the fabric anisotropy
 (H^c_11 - H^c_33)/(tr H^c / 3) (paper: about 4.1 at every strain) and the large-strain
@@ -25,7 +25,7 @@ import numpy as np  # noqa: E402
 # Column names of fabric_series.csv and the paper's symbols (as Markdown text).
 FABRICS = [("H", "H^c"), ("F", "F^c"), ("G", "G^c"), ("H_strong", "H^c-strong"), ("F_strong", "F^c-strong"),
            ("G_strong", "G^c-strong")]
-SMALL_STRAIN = 0.0101  # the insets' range of -eps11 (1%, the checkpoint lies a hair above)
+SMALL_STRAIN = 0.0101  # the small-strain panels' range of -eps11 (1%, the checkpoint lies a hair above)
 
 
 def stem(path):
@@ -68,50 +68,46 @@ def normalized_anisotropy(rows, name):
     return anisotropy(rows, name, 1, 3) / (trace / 3)
 
 
-def percent(x):
-    return 100 * np.maximum(x, 1e-5)
-
-
-def with_inset(axis, x, series, ylabel):
-    """series: [(y, style kwargs)] drawn on `axis` and on a small-strain inset."""
-    inset = axis.inset_axes([0.52, 0.1, 0.44, 0.4])
-    for y, style in series:
-        axis.plot(100 * x, y, **style)
-        small = x <= SMALL_STRAIN
-        inset.plot(100 * x[small], y[small], **{k: v for k, v in style.items() if k != "label"})
-    axis.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
-    axis.set_ylabel(ylabel)
-    inset.set_xlim(0, 100 * SMALL_STRAIN)
-    inset.tick_params(labelsize=7)
-    inset.set_title(r"$-\varepsilon_{11} \leq 1\%$", fontsize=7)
+def small_strain_panel(axis):
+    """The paper's insets, drawn as a panel beside the full range so that they hide no curve."""
+    axis.set_xlim(0, 100 * SMALL_STRAIN)
+    axis.set_xlabel(r"strain $-\varepsilon_{11}$ (%), first 1%")
     axis.grid(alpha=0.3)
+
+
+def draw(full, small, x, y, **style):
+    full.plot(100 * x, y, **style)
+    keep = x <= SMALL_STRAIN
+    small.plot(100 * x[keep], y[keep], **style)
 
 
 def main(prefix, runs):
     shapes = [(label, *shape_series(*spec.split(","))) for label, spec in runs]
     label, _, strain, K, C, _ = shapes[0]
-    figure, axis = plt.subplots(figsize=(6, 4.5))
-    with_inset(axis, strain, [(C[:, i, i] / K, {"marker": "o", "ms": 3, "label": f"$C_{{{i + 1}{i + 1}}}/K_C$"})
-                              for i in range(3)], r"$C_{ii}/K_{\mathbf{C}}$")
-    axis.set_title(f"Fig. C123 at paper size: {label}")
-    axis.legend(loc="upper left", fontsize=8)
+    figure, (full, small) = plt.subplots(1, 2, figsize=(10, 4.2), gridspec_kw={"width_ratios": [2, 1]})
+    for i in range(3):
+        draw(full, small, strain, C[:, i, i] / K, marker="o", ms=3, label=f"$C_{{{i + 1}{i + 1}}}/K_C$")
+    full.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
+    full.set_ylabel(r"$C_{ii}/K_{\mathbf{C}}$")
+    full.grid(alpha=0.3)
+    full.legend(fontsize=8)
+    small_strain_panel(small)
+    full.set_title(f"Fig. C123 at paper size: {label}")
     figure.tight_layout()
     figure.savefig(f"{prefix}_C123.png", dpi=150)
 
-    figure, axes = plt.subplots(1, 2, figsize=(12, 4.5))
-    for k, (a, title) in enumerate([(1, r"(a) across $x_1$-$x_3$"), (2, r"(b) across $x_2$-$x_3$")]):
-        with_inset(axes[k], strain, [], "")
-        for label, _, x, Kx, Cx, _ in shapes:
-            axes[k].plot(100 * x, (Cx[:, a - 1, a - 1] - Cx[:, 2, 2]) / Kx, "o-", ms=3, label=label)
-        axes[k].set_ylabel(fr"$(C_{{{a}{a}}} - C_{{33}})/K_{{\mathbf{{C}}}}$")
-        axes[k].set_title(f"Fig. A{title}")
-        axes[k].legend(fontsize=8, loc="upper left")
-    for ax in axes:  # the insets were drawn empty above; fill them now with every shape
-        inset = ax.child_axes[0]
-        a = 1 if ax is axes[0] else 2
-        for label, _, x, Kx, Cx, _ in shapes:
-            small = x <= SMALL_STRAIN
-            inset.plot(100 * x[small], ((Cx[:, a - 1, a - 1] - Cx[:, 2, 2]) / Kx)[small], "o-", ms=2)
+    figure, axes = plt.subplots(2, 2, figsize=(11, 8), gridspec_kw={"width_ratios": [2, 1]})
+    for row, (a, title) in enumerate([(1, r"(a) across $x_1$-$x_3$"), (2, r"(b) across $x_2$-$x_3$")]):
+        full, small = axes[row]
+        for k, (label, _, x, Kx, Cx, _) in enumerate(shapes):  # a subset's line must not hide its superset's
+            draw(full, small, x, (Cx[:, a - 1, a - 1] - Cx[:, 2, 2]) / Kx, marker="o", ms=5 - k, lw=2.5 - 0.7 * k,
+                 ls=["-", "--", ":"][k % 3], label=label)
+        full.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
+        full.set_ylabel(fr"$(C_{{{a}{a}}} - C_{{33}})/K_{{\mathbf{{C}}}}$")
+        full.set_title(f"Fig. A{title}")
+        full.grid(alpha=0.3)
+        full.legend(fontsize=8)
+        small_strain_panel(small)
     figure.tight_layout()
     figure.savefig(f"{prefix}_A.png", dpi=150)
 
