@@ -1,6 +1,7 @@
 // aniso-dem: periodic-cell DEM. `prepare` builds a dense isotropic assembly,
 // `load` runs biaxial plane strain at constant mean stress from it, `hold` measures
-// how static a checkpoint is and `relax` makes a loosely relaxed checkpoint static.
+// how static a checkpoint is and `relax` makes a loosely relaxed checkpoint static;
+// `import` and `export` carry assemblies from and to other codes and ParaView.
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
@@ -16,6 +17,7 @@
 #include "dem/relax.hpp"
 #include "dem/run_folder.hpp"
 #include "dem/settings.hpp"
+#include "dem/transfer_commands.hpp"
 
 #include <fmt/format.h>
 
@@ -95,6 +97,39 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   auto* relax = app.add_subcommand(
       "relax", "relax a checkpoint at its own loading control to the verified equilibrium of "
                "dem.equilibrium and write it to --output (a static state for the probes)");
+  auto* import = app.add_subcommand(
+      "import", "a sphere assembly from a LAMMPS/LIGGGHTS data file or YADE's text export, with the "
+                "tangential forces of a contact dump, as a checkpoint (--output)");
+  auto* export_ = app.add_subcommand(
+      "export", "a checkpoint as a LAMMPS data file (and contact dump), or as XDMF for ParaView "
+                "(particles and force chains)");
+  dem::ImportOptions import_options;
+  import->add_option("--input", import_options.input, "LAMMPS data file, or YADE text export")->required();
+  import->add_option("--format", import_options.format, "lammps (default) or yade")
+      ->check(CLI::IsMember({"lammps", "yade"}));
+  import->add_option("--cell", import_options.cell, "yade: the periodic cell's lengths LX,LY,LZ [m]")
+      ->expected(3)
+      ->delimiter(',');
+  import->add_option("--contacts", import_options.contacts,
+                     "LAMMPS `dump local` file with each contact's tangential force (keeps a static state "
+                     "static)");
+  import->add_option(
+      "--contact-columns", import_options.contact_columns,
+      "1-based columns I,J,T of the two ids and the first tangential force component in "
+      "--contacts; T < 0: force on the second id (aniso's export: 1,2,6; LIGGGHTS pair/gran/local "
+      "id force_tangential: 1,2,4)");
+  import->add_option("--output", import_options.output, "checkpoint to write (HDF5; must not exist)")
+      ->required();
+  import->fallthrough();
+  dem::ExportOptions export_options;
+  export_->add_option("--input", export_options.input, "checkpoint (HDF5)")->required();
+  export_->add_option("--format", export_options.format, "lammps (default) or xdmf")
+      ->check(CLI::IsMember({"lammps", "xdmf"}));
+  export_->add_option("--output", export_options.output, "LAMMPS data file, or .xmf for xdmf")->required();
+  export_->add_option(
+      "--contacts", export_options.contacts,
+      "lammps: also write every contact as a `dump local` file (id1 id2 fnx fny fnz ftx fty ftz)");
+  export_->fallthrough();
   std::string input;
   std::string output;
   relax->add_option("--input", input, "checkpoint to relax (HDF5)")->required();
@@ -148,8 +183,10 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
   if (options.dry_run) return 0;
 
+  if (export_->parsed()) return dem::run_export(export_options, logger, comm);
   if (hold->parsed()) return run_hold(*checkpoint, input, hold_steps, hold_csv, max_drift, logger, comm);
   const std::string command = cli::join_command_line(argc, argv);
+  if (import->parsed()) return dem::run_import(import_options, config, reader, command, logger, comm);
   if (relax->parsed()) {
     const auto provenance = h5::make_provenance("aniso-dem relax", reader.effective_toml(), command, comm);
     return run_relax(*checkpoint, input, output, config, provenance, logger, comm);

@@ -46,7 +46,15 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
   const double strain_limit = std::log(0.75 / 0.05) / 3.0;
   const std::int64_t max_hold_steps = 2000 * interval;
   std::int64_t held_since = 0;
-  Progress progress(logger, label, prepare.seize_stress, 10.0);
+  // The progress is the volumetric strain, not p: p stays near zero until the network jams and
+  // then rises within a few hundred steps, so an estimate from p said "ETA 0 s" for most of the
+  // way. At the constant compaction rate the strain runs to the solid fraction of random close
+  // packing (0.64), the densest state a compaction seizes at: an upper bound of the time left.
+  constexpr double random_close_packing = 0.64;
+  const double start_volume = simulation.cell().volume();
+  const double strain_to_jam =
+      std::max(std::log(random_close_packing * start_volume / simulation.solid_volume()), 1e-3);
+  Progress progress(logger, label + " (volumetric strain to solid fraction 0.64)", strain_to_jam, 10.0);
   const Vec3 start_lengths = simulation.cell().lengths();
   for (;;) {
     simulation.step();
@@ -54,7 +62,7 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
     const double p = mean_stress_compression_positive(simulation.stress());
     const double energy_ratio =
         simulation.equilibrium().kinetic_energy / (std::max(p, 1.0) * simulation.cell().volume());
-    progress.update(std::clamp(p, 0.0, prepare.seize_stress));
+    progress.update(std::min(std::log(start_volume / simulation.cell().volume()), strain_to_jam));
     const bool above = p >= prepare.seize_stress;
     // Only a held cell tells a load-bearing network from one that the compaction itself
     // loads: the viscous contact forces of a moving cell carry p of their own.

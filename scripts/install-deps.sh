@@ -38,6 +38,8 @@ packages=(
   python3 python3-numpy python3-h5py python3-scipy python3-matplotlib
   # the voxel benchmark's scikit-image peer (tests/perf/bench_voxel_peer.py --skimage)
   python3-skimage
+  # a peer DEM code: the import test settles a packing with LIGGGHTS (tests/dem/peer/liggghts_import.sh)
+  liggghts
   # ParaView reads the XDMF outputs: the e2e test renders one with pvpython, headless under Xvfb
   python3-paraview xvfb xauth libgl1-mesa-dri
 )

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <fstream>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -108,6 +109,17 @@ void AtomicFile::commit() {
   }
   throw_if_any_failed(comm_, error);
   committed_ = true;
+}
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  AtomicFile atomic(path);
+  {
+    std::ofstream out(atomic.temp_path(), std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) throw FileError(path + ": cannot write");
+  }
+  atomic.commit();
 }
 
 } // namespace aniso::h5

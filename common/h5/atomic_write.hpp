@@ -43,4 +43,7 @@ private:
   bool committed_ = false;
 };
 
+/// Writes a whole text file atomically (serial: this process alone). FileError naming the path.
+void write_text_atomically(const std::string& path, const std::string& text);
+
 } // namespace aniso::h5

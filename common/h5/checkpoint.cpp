@@ -321,6 +321,8 @@ Problem check_sizes(const Checkpoint& local) {
        {p.diameter.size(), p.aspect_ratio.size(), p.mass.size(), p.inertia.size(), p.position.size(),
         p.orientation.size(), p.velocity.size(), p.angular_velocity.size(), p.force.size(), p.torque.size()})
     if (size != n) return "/particles: the particle arrays have different lengths";
+  if (!p.source_id.empty() && p.source_id.size() != n)
+    return "/particles/source_id: one per particle, or none";
   const ContactRows& c = local.contacts;
   const std::size_t m = c.particles.size();
   for (const std::size_t size : {c.image_shift.size(), c.normal.size(), c.point.size(), c.overlap.size(),
@@ -399,7 +401,7 @@ std::vector<double> as_vector(const Vec3& vector) {
   return {vector.x(), vector.y(), vector.z()};
 }
 
-void write_content(File& file, const Checkpoint& local, const Provenance& provenance,
+void write_content(File& file, const Checkpoint& local, const Provenance& provenance, bool with_source_ids,
                    std::uint64_t n_particles, std::uint64_t n_contacts, const RowSelection& particle_rows,
                    const RowSelection& contact_rows) {
   file.write_attribute("schema", std::string_view(checkpoint_schema_name));
@@ -470,6 +472,8 @@ void write_content(File& file, const Checkpoint& local, const Provenance& proven
     rows("angular_velocity", flatten(p.angular_velocity), 3, "rad/s", "angular velocity, world frame");
     rows("force", flatten(p.force), 3, "N", "total force at the stored step");
     rows("torque", flatten(p.torque), 3, "N m", "total torque at the stored step, world frame");
+    if (with_source_ids)
+      rows("source_id", p.source_id, 1, "1", "the particle's id in the file it was imported from");
   }
 
   {
@@ -588,6 +592,7 @@ Checkpoint read_file(const std::string& path) {
     p.angular_velocity = to_vec3(group.read_dataset<double>("angular_velocity", Dims{n, 3}));
     p.force = to_vec3(group.read_dataset<double>("force", Dims{n, 3}));
     p.torque = to_vec3(group.read_dataset<double>("torque", Dims{n, 3}));
+    if (group.has_child("source_id")) p.source_id = group.read_dataset<std::uint64_t>("source_id", Dims{n});
   }
 
   {
@@ -706,6 +711,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& local, const Pr
     });
   }
   throw_if_any<InputError>(comm, problem, prefix);
+  const bool with_source_ids = comm.any(!particles.source_id.empty());
+  throw_if_any<InputError>(comm,
+                           with_source_ids && particles.source_id.size() != particles.size()
+                               ? Problem("/particles/source_id: given on some ranks only")
+                               : std::nullopt,
+                           prefix);
 
   // 2. What is not per-row must be the same on every rank (rank 0's copy is what gets written).
   const std::vector<char> shared = shared_state_bytes(local, provenance);
@@ -739,7 +750,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& local, const Pr
   // 4. Write under a temporary name, then rename.
   AtomicFile atomic(path, comm);
   File file = File::create(atomic.temp_path(), comm);
-  write_content(file, local, provenance, n_particles, n_contacts, particle_rows, contact_row_selection);
+  write_content(file, local, provenance, with_source_ids, n_particles, n_contacts, particle_rows,
+                contact_row_selection);
   file.close();
   atomic.commit();
 }

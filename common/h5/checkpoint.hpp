@@ -54,6 +54,9 @@ struct ParticleRows {
   std::vector<Vec3> angular_velocity; ///< world frame [rad/s]
   std::vector<Vec3> force;            ///< total force at the stored step [N]
   std::vector<Vec3> torque;           ///< total torque at the stored step, world frame [N m]
+  /// Optional (empty, or one per row): the id each particle had in the file it was imported
+  /// from (`aniso-dem import`); /particles/source_id on disk. resize() leaves it alone.
+  std::vector<std::uint64_t> source_id;
 
   [[nodiscard]] std::size_t size() const { return id.size(); }
   void resize(std::size_t n);

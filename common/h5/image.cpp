@@ -143,17 +143,6 @@ std::string xdmf_text(const std::string& h5_name, const VoxelImage& image) {
       h5_name, n1 + 1, n2 + 1, n3 + 1, image.origin.x(), image.origin.y(), image.origin.z(), h, n1, n2, n3);
 }
 
-void write_text_atomically(const std::string& path, const std::string& text) {
-  AtomicFile atomic(path);
-  {
-    std::ofstream out(atomic.temp_path(), std::ios::binary | std::ios::trunc);
-    out << text;
-    out.close();
-    if (!out) throw FileError(path + ": cannot write");
-  }
-  atomic.commit();
-}
-
 std::int64_t read_int_attribute(const Dataset& dataset, const std::string& name) {
   if (!dataset.has_attribute(name)) dataset.fail("missing attribute '" + name + "'");
   return dataset.read_attribute<std::int64_t>(name);
