@@ -10,6 +10,7 @@ usage:
   campaign.py check CONFIG BIN         validates the whole config before any stage runs: every built stage
                                        reads its own section (`--print-config`, the stage's own validator)
                                        and the [workflow] section is checked against the checkpoints
+  campaign.py resources CONFIG         the SLURM resources of [workflow.resources] as JSON, validated
 
 `stages` prints one word per usable stage, then the optional command lines
 they offer (lbm-directions: one LBM run per flow direction); for every other
@@ -29,12 +30,21 @@ Every strain named must be one of dem.load.checkpoint_strains (relative 1e-9); a
 unknown key, a value that is not a list of numbers, or a strain that is not a
 checkpoint stops with a message naming the key and the value.
 
+The SLURM resources of each kind of job (slurm/submit.py), all optional:
+
+  [workflow.resources.load]      one table per kind: prepare, load, fabric, probe,
+  time = "12:00:00"              probe-collect, voxel, lbm, lbm-collect, series, report
+  mem = "4G"                     sbatch --time (D-HH:MM:SS, HH:MM:SS, MM:SS or minutes), --mem
+  ranks = 2                      (a number with K, M, G or T), --ntasks of an MPI job (the
+  cpus_per_task = 1              collect, series and report jobs are serial), --cpus-per-task
+
 `load-input` resumes from the newest checkpoint of this run that history.h5
 already covers (history.h5 is rewritten just after each checkpoint, so a kill
 between the two leaves the newer checkpoint uncovered) and that is newer than
 prepared.h5 and the config; otherwise it starts from prepared.h5, with --overwrite
 when files of an earlier (stale) loading run are there.
 """
+import json
 import os
 import re
 import subprocess
@@ -71,6 +81,19 @@ def fail(message, code=BAD_INPUT):
 
 # [workflow] keys: the stage they select checkpoints for, and the key whose strains bound them.
 WORKFLOW_KEYS = {"probe_strains": None, "voxel_strains": None, "lbm_strains": "voxel_strains"}
+# The kinds of SLURM job (slurm/submit.py; workflows/Makefile's slurm-plan) and whether they run MPI.
+JOB_KINDS = {"prepare": True, "load": True, "fabric": True, "probe": True, "probe-collect": False,
+             "voxel": True, "lbm": True, "lbm-collect": False, "series": False, "report": False}
+# [workflow.resources.KIND] keys: sbatch option, and the check of the value with what it expects.
+RESOURCE_KEYS = {
+    "time": ("--time", lambda v: isinstance(v, str) and re.fullmatch(r"(\d+-)?\d+(:\d\d){0,2}", v),
+             'a SLURM time such as "12:00:00" or "1-00:00:00"'),
+    "mem": ("--mem", lambda v: isinstance(v, str) and re.fullmatch(r"\d+[KMGT]?", v), 'a size such as "4G"'),
+    "ranks": ("--ntasks", lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= 1,
+              "an integer >= 1"),
+    "cpus_per_task": ("--cpus-per-task", lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= 1,
+                      "an integer >= 1"),
+}
 SELECTING_STAGES = {"probe": "probe_strains", "voxel": "voxel_strains", "lbm": "lbm_strains"}
 
 
@@ -97,9 +120,35 @@ def workflow_section(config):
     if not isinstance(section, dict):
         fail(f"{config}: [workflow] must be a table, not {section!r}")
     for key in section:
-        if key not in WORKFLOW_KEYS:
-            fail(f"{config}: unknown key workflow.{key}; allowed: {', '.join(WORKFLOW_KEYS)}")
+        if key not in WORKFLOW_KEYS and key != "resources":
+            fail(f"{config}: unknown key workflow.{key}; allowed: {', '.join(WORKFLOW_KEYS)}, resources")
+    check_resources(config, section.get("resources", {}))
     return section
+
+
+def check_resources(config, resources):
+    """[workflow.resources]: a table of job kinds, each a table of known keys with valid values."""
+    if not isinstance(resources, dict):
+        fail(f"{config}: workflow.resources must be a table of job kinds, not {resources!r}")
+    for kind, table in resources.items():
+        if kind not in JOB_KINDS:
+            fail(f"{config}: unknown job kind workflow.resources.{kind}; allowed: {', '.join(JOB_KINDS)}")
+        if not isinstance(table, dict):
+            fail(f"{config}: workflow.resources.{kind} must be a table, not {table!r}")
+        for key, value in table.items():
+            if key not in RESOURCE_KEYS:
+                fail(f"{config}: unknown key workflow.resources.{kind}.{key}; allowed: {', '.join(RESOURCE_KEYS)}")
+            if not RESOURCE_KEYS[key][1](value):
+                fail(f"{config}: workflow.resources.{kind}.{key} = {value!r}: expected {RESOURCE_KEYS[key][2]}")
+        if table.get("ranks", 1) > 1 and not JOB_KINDS[kind]:
+            fail(f"{config}: workflow.resources.{kind}.ranks = {table['ranks']}: the {kind} job is serial")
+
+
+def sbatch_resources(config):
+    """{kind: {sbatch option: value}} of [workflow.resources]."""
+    resources = workflow_section(config).get("resources", {})
+    return {kind: {RESOURCE_KEYS[key][0]: str(value) for key, value in table.items()}
+            for kind, table in resources.items()}
 
 
 def strain_indices(config, key, values, strains):
@@ -249,6 +298,8 @@ def main(argv):
         print(" ".join(usable_stages(argv[2])))
     elif len(argv) == 4 and argv[1] == "check":
         check_config(argv[2], argv[3])
+    elif len(argv) == 3 and argv[1] == "resources":
+        print(json.dumps(sbatch_resources(argv[2])))
     elif len(argv) == 4 and argv[1] == "load-input":
         print(" ".join(load_input(argv[2], argv[3])))
     else:

@@ -207,10 +207,20 @@ class CheckpointSelection(unittest.TestCase):
                                  "--out", os.path.join(self.dir.name, "run"), "--bin", bin_dir, "--dry-run"],
                                 capture_output=True, text=True)
         self.assertEqual(result.returncode, 0, result.stderr)
-        names = [re.search(r"--job-name=aniso-(\S+)", line).group(1) for line in result.stdout.splitlines()]
+        names = [name for name, _ in submitted_plan(result.stdout)]
         self.assertEqual(names, ["prepare", "load", "fabric", "voxel-load_000", "probe-load_002",
                                  "probe-collect-load_002", "voxel-load_002", "lbm-load_002", "lbm-collect-load_002",
                                  "series", "report"])
+
+
+def submitted_plan(stdout):
+    """[(step name, the sbatch command line and the job script it submits)] of a --dry-run."""
+    plan = []
+    for line in stdout.splitlines():
+        script = line.split()[-1]
+        with open(script) as f:
+            plan.append((re.search(r"jobs/(\S+)\.sh$", script).group(1), line + "\n" + f.read()))
+    return plan
 
 
 class WholeConfigCheck(unittest.TestCase):
@@ -284,13 +294,49 @@ class SubmitDryRun(unittest.TestCase):
             result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config", config,
                                      "--out", out, "--bin", bin_dir, "--dry-run"], capture_output=True, text=True)
             self.assertEqual(result.returncode, 0, result.stderr)
-            plan = {re.search(r"--job-name=aniso-(\S+)", line).group(1): line for line in result.stdout.splitlines()}
+            plan = dict(submitted_plan(result.stdout))
             self.assertNotIn("prepare", plan)
             self.assertNotIn("load", plan)
             self.assertIn("--array=3 ", plan["probe-load_001"])
             self.assertIn("--array=0-6 ", plan["probe-load_000"])
             self.assertIn("--dependency=afterok:<probe-load_001>", plan["probe-collect-load_001"])
 
+
+    def test_resources_per_kind_go_into_the_job_scripts(self):
+        # [workflow.resources.<kind>] sets each kind's sbatch options; they override --ranks (issue 24).
+        with tempfile.TemporaryDirectory() as folder:
+            bin_dir = os.path.join(folder, "bin")
+            os.mkdir(bin_dir)
+            fake_bin(bin_dir, doubles=["fabric", "probe", "voxel", "lbm"])
+            config = e2e_with_workflow(folder, '[workflow.resources.load]\ntime = "1-12:00:00"\nmem = "6G"\n'
+                                               'ranks = 3\n[workflow.resources.voxel]\ncpus_per_task = 4\n')
+            result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config", config,
+                                     "--out", os.path.join(folder, "run"), "--bin", bin_dir, "--ranks", "2",
+                                     "--dry-run"], capture_output=True, text=True)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            plan = dict(submitted_plan(result.stdout))
+            for option in ("#SBATCH --time=1-12:00:00", "#SBATCH --mem=6G", "#SBATCH --ntasks=3"):
+                self.assertIn(option, plan["load"])
+            self.assertIn("#SBATCH --ntasks=2", plan["prepare"])
+            self.assertNotIn("--time", plan["prepare"])
+            self.assertIn("#SBATCH --cpus-per-task=4", plan["voxel-load_001"])
+            script = os.path.join(folder, "run", "slurm", "jobs", "load.sh")
+            self.assertTrue(os.access(script, os.X_OK), "the job script can be rerun by hand")
+            self.assertEqual(subprocess.run(["bash", "-n", script]).returncode, 0)
+
+    def test_bad_resources_are_refused_before_submitting(self):
+        for section, message in [('[workflow.resources.report]\nranks = 2', "the report job is serial"),
+                                 ('[workflow.resources.load]\ntime = "12h"', "expected a SLURM time"),
+                                 ('[workflow.resources.laod]\ntime = "1:00:00"', "unknown job kind"),
+                                 ('[workflow.resources.load]\nmemory = "4G"', "unknown key workflow.resources.load")]:
+            with tempfile.TemporaryDirectory() as folder:
+                config = e2e_with_workflow(folder, section)
+                result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config",
+                                         config, "--out", os.path.join(folder, "run"), "--bin", BUILD, "--dry-run"],
+                                        capture_output=True, text=True)
+                self.assertNotEqual(result.returncode, 0, section)
+                self.assertIn(message, result.stderr, section)
+                self.assertEqual(result.stdout, "", section)
 
     def test_plan_has_arrays_and_dependencies(self):
         with tempfile.TemporaryDirectory() as folder:
@@ -303,8 +349,7 @@ class SubmitDryRun(unittest.TestCase):
                                      "--sbatch-arg=--partition=batch", "--dry-run"],
                                     capture_output=True, text=True)
             self.assertEqual(result.returncode, 0, result.stderr)
-            lines = result.stdout.splitlines()
-            names = [re.search(r"--job-name=aniso-(\S+)", line).group(1) for line in lines]
+            names, lines = (list(column) for column in zip(*submitted_plan(result.stdout)))
             per_checkpoint = ["probe", "probe-collect", "voxel", "lbm", "lbm-collect"]
             self.assertEqual(names, ["prepare", "load", "fabric"]
                              + [f"{s}-load_00{k}" for k in range(3) for s in per_checkpoint] + ["series", "report"])
@@ -313,10 +358,10 @@ class SubmitDryRun(unittest.TestCase):
             self.assertIn("--array=0-2", plan["lbm-load_001"])
             self.assertIn("--dependency=afterok:<voxel-load_001>", plan["lbm-load_001"])
             self.assertIn("--dependency=afterok:<probe-load_001>", plan["probe-collect-load_001"])
-            self.assertIn("--ntasks=4", plan["load"])
-            self.assertIn("--ntasks=1", plan["report"])
+            self.assertIn("#SBATCH --ntasks=4", plan["load"])
+            self.assertIn("#SBATCH --ntasks=1", plan["report"])
             self.assertIn("probe_load_001_fork{task}.h5", plan["probe-load_001"])
-            self.assertTrue(all("--partition=batch" in line for line in lines))
+            self.assertTrue(all("#SBATCH --partition=batch" in line for line in lines))
             self.assertEqual(plan["series"].count("<"), len(names) - 2, "the series waits for every analysis")
             self.assertEqual(plan["report"].count("<"), len(names) - 1, "the report waits for every step")
 

@@ -16,15 +16,26 @@ submits only the steps whose files are missing or out of date, and of a job
 array only the tasks whose files are (--array=3 when one probe fork is lost).
 
 Stages that are not built yet are left out with one line each on stderr.
-MPI steps get --ntasks=N (--ranks, default 1), serial ones 1 task. Cluster
-settings (partition, account, time limit...) go through --sbatch-arg or
-sbatch's own environment variables (SBATCH_PARTITION, SBATCH_ACCOUNT,
-SBATCH_TIMELIMIT, ...). Logs: RUN_DIR/slurm/<step>-<job>[_<task>].log; the job
+MPI steps get --ntasks=N (--ranks, default 1), serial ones 1 task. Each kind
+of job can have its own resources in the config (time, mem, ranks,
+cpus_per_task under [workflow.resources.<kind>], `campaign.py` documents
+them); they override --ranks. Cluster settings (partition, account...) go
+through --sbatch-arg or sbatch's own environment variables (SBATCH_PARTITION,
+SBATCH_ACCOUNT, ...).
+
+Every job is a script in RUN_DIR/slurm/jobs/<step>.sh with its #SBATCH lines
+(written also by --dry-run): read it, or rerun one step by hand with
+`sbatch RUN_DIR/slurm/jobs/<step>.sh` (an array step: add --array=...). Only
+the array indices and the dependencies on this submission's jobs are on the
+sbatch command line. Logs: RUN_DIR/slurm/<step>-<job>[_<task>].log; the job
 ids: RUN_DIR/slurm/jobs.tsv. --wait blocks until every job has ended and
-exits 0 only if all completed.
+exits 0 only if all completed, polling SLURM every 0.5 s at first and at
+most every 30 s later (gentle on the controller for a long campaign).
 """
 import argparse
+import json
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -52,6 +63,7 @@ class Step:
         if len(fields) < 5 or fields[2] not in ("mpi", "serial"):
             fail(f"bad slurm-plan line from the Makefile: '{line}'")
         self.name, self.mpi = fields[0], fields[2] == "mpi"
+        self.kind = re.sub(r"-load_\d+$", "", self.name)  # probe-load_003 -> probe
         self.tasks = int(fields[1])
         self.after = [] if fields[3] == "-" else fields[3].split(",")
         self.targets = fields[4:]
@@ -79,7 +91,8 @@ def campaign_facts(args):
     facts = {"CHECKPOINTS": ask("checkpoints", args.config, args.bin), "STAGES": ask("stages", args.bin)}
     for stage in ("probe", "voxel", "lbm"):  # the checkpoints the config's [workflow] gives each stage
         facts[f"{stage.upper()}_CHECKPOINTS"] = ask("checkpoints", args.config, args.bin, stage)
-    return facts
+    resources = json.loads(ask("resources", args.config))
+    return facts, resources
 
 
 def make_variables(args, facts):
@@ -110,10 +123,29 @@ def upstream(step, earlier):
     return earlier if "*" in step.after else [s for s in earlier if s.name in step.after]
 
 
-def sbatch_command(step, waits_for, args, variables, log_dir):
+def job_script(step, waits_for, args, variables, resources, log_dir):
+    """Writes RUN_DIR/slurm/jobs/<step>.sh: the job's sbatch options and its make-step.sh call."""
     log = os.path.join(log_dir, f"{step.name}-%A_%a.log" if step.tasks > 1 else f"{step.name}-%j.log")
-    command = ["sbatch", "--parsable", f"--job-name=aniso-{step.name}", f"--output={log}",
-               f"--ntasks={args.ranks if step.mpi else 1}"]
+    options = {"--job-name": f"aniso-{step.name}", "--output": log, "--ntasks": str(args.ranks if step.mpi else 1)}
+    options.update(resources.get(step.kind, {}))
+    upstream_files = [f"--upstream={path}" for s in waits_for for path in s.expanded_targets()]
+    body = [STEP_SCRIPT, WORKFLOWS, *variables, *upstream_files, *step.targets]
+    lines = ["#!/bin/bash", f"# aniso campaign step {step.name}, written by workflows/slurm/submit.py"]
+    lines += [f"#SBATCH {key}={value}" for key, value in options.items()]
+    lines += [f"#SBATCH {argument}" for argument in args.sbatch_arg]
+    lines += [f"export ANISO_SLURM_LAUNCHER=${{ANISO_SLURM_LAUNCHER:-{shlex.quote(args.launcher)}}}",
+              "exec " + " \\\n  ".join(shlex.quote(word) for word in body), ""]
+    path = os.path.join(log_dir, "jobs", f"{step.name}.sh")
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path + ".tmp", "w") as script:
+        script.write("\n".join(lines))
+    os.chmod(path + ".tmp", 0o755)
+    os.replace(path + ".tmp", path)
+    return path
+
+
+def sbatch_command(step, waits_for, script):
+    command = ["sbatch", "--parsable"]
     if step.tasks > 1:
         whole = step.indices == list(range(step.tasks))
         command.append(f"--array=0-{step.tasks - 1}" if whole else "--array=" + ",".join(map(str, step.indices)))
@@ -121,12 +153,10 @@ def sbatch_command(step, waits_for, args, variables, log_dir):
     if job_ids:
         # --kill-on-invalid-dep: a failed upstream job cancels this one instead of leaving it pending
         command += ["--dependency=afterok:" + ":".join(job_ids), "--kill-on-invalid-dep=yes"]
-    command += args.sbatch_arg
-    upstream_files = [f"--upstream={path}" for s in waits_for for path in s.expanded_targets()]
-    return command + [STEP_SCRIPT, WORKFLOWS, *variables, *upstream_files, *step.targets]
+    return command + [script]
 
 
-def submit(steps, args, variables):
+def submit(steps, args, variables, resources):
     log_dir = os.path.join(args.out, "slurm")
     os.makedirs(log_dir, exist_ok=True)
     submitted = []
@@ -139,7 +169,7 @@ def submit(steps, args, variables):
             if not step.indices:
                 say(f"{step.name}: up to date, not submitted")
                 continue
-        command = sbatch_command(step, waits_for, args, variables, log_dir)
+        command = sbatch_command(step, waits_for, job_script(step, waits_for, args, variables, resources, log_dir))
         if args.dry_run:
             print(shlex.join(command))
             step.job_id = f"<{step.name}>"
@@ -191,9 +221,11 @@ def report_end(step, states, log_dir):
 
 
 def wait(steps, log_dir):
-    """Polls every 0.5 s (sbatch --wait polls after 2, 10, 42 s...). True when all completed."""
+    """Polls after 0.5 s, then 1.5 times longer each round up to 30 s (a short test campaign ends
+    quickly; a day-long one asks SLURM about twice a minute). True when all completed."""
     pending = {s.job_id: s for s in steps}
     ok = True
+    interval = 0.5
     while pending:
         for job_id, step in list(pending.items()):
             states = job_states(job_id)
@@ -206,7 +238,8 @@ def wait(steps, log_dir):
                 ok = report_end(step, states, log_dir) and ok
             del pending[job_id]
         if pending:
-            time.sleep(0.5)
+            time.sleep(interval)
+            interval = min(30.0, 1.5 * interval)
     return ok
 
 
@@ -227,8 +260,9 @@ def main():
         setattr(args, name, os.path.abspath(getattr(args, name)))
     if not os.path.isfile(args.config):
         fail(f"config file {args.config} not found")
-    variables = make_variables(args, campaign_facts(args))
-    steps = submit(read_plan(variables), args, variables)
+    facts, resources = campaign_facts(args)
+    variables = make_variables(args, facts)
+    steps = submit(read_plan(variables), args, variables, resources)
     if args.dry_run:
         return
     if not steps:
