@@ -7,6 +7,10 @@ namespace aniso {
 namespace {
 
 __extension__ using uint128 = unsigned __int128; // GCC/Clang extension, exact 128-bit products
+__extension__ using int128 = __int128;
+// The fast lane's window (see exact_sum.hpp): terms up to 2^30 times smaller than the first one's
+// last bit and 2^12 times larger go there.
+constexpr int lane_below = 30;
 
 // Bit position of limb 0's least significant bit is 2^-offset. The smallest
 // mantissa bit of any double is 2^-1074, so 1152 keeps every position
@@ -17,7 +21,7 @@ constexpr std::uint64_t digit_mask = 0xffffffffULL;
 
 } // namespace
 
-void ExactSum::add(double term) {
+void ExactSum::add_outside_lane(double term) {
   // Read sign, exponent and mantissa straight from the IEEE-754 bits: much
   // cheaper than frexp/ldexp, and exact for normals and subnormals alike.
   std::uint64_t bits = 0;
@@ -32,6 +36,18 @@ void ExactSum::add(double term) {
   if (mantissa == 0) return;
   // value = mantissa * 2^(e - 1075) for normals, mantissa * 2^-1074 for subnormals.
   const int lsb_exponent = (biased_exponent == 0 ? 1 : biased_exponent) - 1075;
+  if (!lane_set_) {
+    lane_lsb_ = lsb_exponent - lane_below;
+    lane_set_ = true;
+  }
+  const int lane_shift = lsb_exponent - lane_lsb_;
+  if (lane_shift >= 0 && lane_shift <= lane_span) {
+    // At most 53 + 42 = 95 bits a term, 2^31 terms: below 2^126.
+    const auto shifted_term = static_cast<int128>(static_cast<uint128>(mantissa) << lane_shift);
+    lane_ += (bits >> 63) != 0 ? -shifted_term : shifted_term;
+    if (++lane_count_ >= lane_capacity) flush_lane();
+    return;
+  }
   const int position = lsb_exponent + offset;
   const int limb = position / digit_bits;
   const int shift = position % digit_bits;
@@ -54,7 +70,28 @@ void ExactSum::add(const ExactSum& other) {
   normalize();
 }
 
+void ExactSum::flush_lane() {
+  if (lane_ != 0) {
+    // |lane| < 2^127, placed at bit lane_lsb_ + offset: five 32-bit digits from limb `limb` on.
+    const std::int64_t sign = lane_ < 0 ? -1 : 1;
+    const uint128 magnitude = lane_ < 0 ? -static_cast<uint128>(lane_) : static_cast<uint128>(lane_);
+    const int position = lane_lsb_ + offset;
+    const int limb = position / digit_bits;
+    const int shift = position % digit_bits;
+    const uint128 low = magnitude << shift;
+    const std::uint64_t high = shift == 0 ? 0 : static_cast<std::uint64_t>(magnitude >> (128 - shift));
+    for (int k = 0; k < 4; ++k)
+      limbs_[limb + k] +=
+          sign * static_cast<std::int64_t>(static_cast<std::uint64_t>(low >> (32 * k)) & digit_mask);
+    limbs_[limb + 4] += sign * static_cast<std::int64_t>(high & digit_mask);
+    ++pending_;
+  }
+  lane_ = 0;
+  lane_count_ = 0;
+}
+
 void ExactSum::normalize() {
+  flush_lane();
   // Canonical form: limbs 0..n-2 in [0, 2^32), the top limb carries the sign.
   for (int k = 0; k < n_limbs - 1; ++k) {
     const std::int64_t carry = limbs_[k] >> digit_bits; // arithmetic shift = floor division (C++20)

@@ -11,26 +11,6 @@ namespace aniso::dem {
 
 using h5::AxisMode;
 
-Vec3 axial_stiffness(const NeighborList& neighbors, const Particles& particles, double volume,
-                     const mpi::Comm& comm) {
-  std::array<ExactSum, 3> sums;
-  const auto& records = neighbors.records();
-  const auto& pairs = neighbors.pairs();
-  for (std::size_t c = 0; c < records.size(); ++c) {
-    const ContactRecord& record = records[c];
-    if (record.overlap <= 0 || pairs[c].i >= particles.n_owned) continue; // counted once, by pair.i's owner
-    const double normal_stiffness =
-        1.5 * record.normal_force / record.overlap; // Hertz: dF/d delta = 3F/(2 delta)
-    const Vec3& d = record.branch;
-    for (int a = 0; a < 3; ++a) {
-      sums[static_cast<std::size_t>(a)].add(normal_stiffness * record.normal[a] * record.normal[a] * d[a] *
-                                            d[a]);
-    }
-  }
-  const std::vector<ExactSum> total = comm.sum_exact(std::span<const ExactSum>(sums));
-  return Vec3(total[0].value(), total[1].value(), total[2].value()) / volume;
-}
-
 Vec3 update_strain_rates(h5::CellState& state, const Mat3& stress, const Vec3& stiffness, double interval,
                          const ServoSettings& settings) {
   Vec3 rates = Vec3::Zero();

@@ -21,11 +21,6 @@ struct ServoSettings {
   double integral_intervals = 20; ///< integral time of the servo, in updates
 };
 
-/// Constrained modulus of the contact network along each axis,
-/// M_a = (1/V) sum_c k_n n_a^2 d_a^2 [Pa], from the last force pass; exact, collective.
-Vec3 axial_stiffness(const NeighborList& neighbors, const Particles& particles, double volume,
-                     const mpi::Comm& comm);
-
 /// New strain rates for every axis from the controller state, the measured stress
 /// (tension positive) and the axial stiffness; `interval` is the time until the next update.
 Vec3 update_strain_rates(h5::CellState& state, const Mat3& stress, const Vec3& stiffness, double interval,

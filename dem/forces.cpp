@@ -47,7 +47,8 @@ void open_contact(ContactHistory& history, ContactRecord& record) {
 
 ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
                                  const ContactMaterial& material, double time_step, const ContactInput& input,
-                                 NeighborList& neighbors, std::vector<ConvexBody>& bodies) {
+                                 NeighborList& neighbors, std::vector<ConvexBody>& bodies,
+                                 ContactSums* sums) {
   for (std::size_t k = 0; k < particles.size(); ++k) {
     particles.force[k].setZero();
     particles.torque[k].setZero();
@@ -164,6 +165,7 @@ ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell,
     record.force_on_i = result.force_on_i;
     record.normal_force = result.normal_force;
     record.tangential_stiffness = result.tangential_stiffness;
+    if (sums != nullptr && i < particles.n_owned) sums->add(record);
   }
   return pass;
 }

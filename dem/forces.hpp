@@ -7,6 +7,7 @@
 #include "common/cell.hpp"
 #include "dem/config.hpp"
 #include "dem/contact_law.hpp"
+#include "dem/contact_sums.hpp"
 #include "dem/neighbors.hpp"
 #include "dem/particle_shape.hpp"
 #include "dem/particles.hpp"
@@ -31,10 +32,12 @@ struct ContactInput {
 /// Zeroes forces and torques, then adds every contact's. `strain_rate` is the
 /// cell's diagonal rate, which adds the affine part to relative velocities. `bodies` is the
 /// caller's scratch for the particles' world-frame bodies, refilled here (kept between passes
-/// so that a step allocates nothing).
+/// so that a step allocates nothing). With `sums`, every touching contact this rank counts (its
+/// lower-id particle owned here) is added to them as its record is written.
 ForcePass compute_contact_forces(Particles& particles, const PeriodicCell& cell, const Vec3& strain_rate,
                                  const ContactMaterial& material, double time_step, const ContactInput& input,
-                                 NeighborList& neighbors, std::vector<ConvexBody>& bodies);
+                                 NeighborList& neighbors, std::vector<ConvexBody>& bodies,
+                                 ContactSums* sums = nullptr);
 
 /// Geometry of the pair of world-frame bodies a and b with centre separation d (minimum image,
 /// from a to b), for an ovoid on either side; `guess` is the normal to start from. The Hertz radius follows

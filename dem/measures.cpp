@@ -2,6 +2,7 @@
 
 #include "common/exact_sum.hpp"
 #include "common/exchange.hpp"
+#include "dem/contact_sums.hpp"
 #include "dem/equilibrium.hpp"
 #include "dem/rotation.hpp"
 
@@ -21,29 +22,7 @@ bool counted_here(const Particles& particles, const Pair& pair, const ContactRec
 
 Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors,
                     const mpi::Comm& comm) {
-  std::array<ExactSum, 9> sums;
-  const auto& records = neighbors.records();
-  const auto& pairs = neighbors.pairs();
-  for (std::size_t c = 0; c < records.size(); ++c) {
-    if (!counted_here(particles, pairs[c], records[c])) continue;
-    const Vec3& branch = records[c].branch;
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        sums[static_cast<std::size_t>(3 * a + b)].add(branch[a] * records[c].force_on_i[b]);
-  }
-  for (std::size_t k = 0; k < particles.n_owned; ++k) {
-    const Vec3& v = particles.velocity[k];
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        sums[static_cast<std::size_t>(3 * a + b)].add(-particles.mass[k] * v[a] * v[b]);
-  }
-  const std::vector<ExactSum> total = comm.sum_exact(std::span<const ExactSum>(sums));
-  Mat3 stress;
-  const double volume = cell.volume();
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      stress(a, b) = total[static_cast<std::size_t>(3 * a + b)].value() / volume;
-  return stress;
+  return reduce_control_measures(sum_contacts(particles, neighbors), particles, cell, comm).stress;
 }
 
 StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell,

@@ -36,7 +36,7 @@ h5::CellState isotropic_strain_control(const Simulation& simulation, double rate
 // assembly is not mistaken for a seized one: if the stress then decays as the
 // motion is damped out, compaction resumes. Returns the steps taken.
 std::int64_t compact_until_seized(Simulation& simulation, double rate, const PrepareConfig& prepare,
-                                  const Logger& logger, const std::string& label) {
+                                  const Logger& logger, const std::string& label, double expected_strain) {
   simulation.set_control(isotropic_strain_control(simulation, rate));
   bool holding = false;
   const std::int64_t interval = simulation.settings().control_interval;
@@ -46,15 +46,13 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
   const double strain_limit = std::log(0.75 / 0.05) / 3.0;
   const std::int64_t max_hold_steps = 2000 * interval;
   std::int64_t held_since = 0;
-  // The progress is the volumetric strain, not p: p stays near zero until the network jams and
-  // then rises within a few hundred steps, so an estimate from p said "ETA 0 s" for most of the
-  // way. At the constant compaction rate the strain runs to the solid fraction of random close
-  // packing (0.64), the densest state a compaction seizes at: an upper bound of the time left.
-  constexpr double random_close_packing = 0.64;
+  // The progress is the volumetric strain towards where the compaction is expected to seize, not
+  // p: p stays near zero until the network jams and then rises within a few hundred steps, so an
+  // estimate from p said "ETA 0 s" for most of the way. The pace includes the held phases, so the
+  // estimate grows while the cell is held.
   const double start_volume = simulation.cell().volume();
-  const double strain_to_jam =
-      std::max(std::log(random_close_packing * start_volume / simulation.solid_volume()), 1e-3);
-  Progress progress(logger, label + " (volumetric strain to solid fraction 0.64)", strain_to_jam, 10.0);
+  const double strain_to_seize = std::max(expected_strain, 1e-6);
+  Progress progress(logger, label + " (volumetric strain to the expected seizure)", strain_to_seize, 10.0);
   const Vec3 start_lengths = simulation.cell().lengths();
   for (;;) {
     simulation.step();
@@ -62,7 +60,7 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
     const double p = mean_stress_compression_positive(simulation.stress());
     const double energy_ratio =
         simulation.equilibrium().kinetic_energy / (std::max(p, 1.0) * simulation.cell().volume());
-    progress.update(std::min(std::log(start_volume / simulation.cell().volume()), strain_to_jam));
+    progress.update(std::min(std::log(start_volume / simulation.cell().volume()), strain_to_seize));
     const bool above = p >= prepare.seize_stress;
     // Only a held cell tells a load-bearing network from one that the compaction itself
     // loads: the viscous contact forces of a moving cell carry p of their own.
@@ -279,6 +277,7 @@ private:
   std::vector<Seized> seized_;      // cycles in order, refinements appended as they run
   std::vector<std::size_t> cycles_; // indices into seized_ of the cycles themselves
   int refinements_ = 0;
+  double last_compaction_strain_ = 0; ///< volumetric strain of the last cycle's compaction
 
   double target() const { return config_.prepare.target_void_ratio; }
   double tolerance() const { return config_.prepare.void_ratio_tolerance; }
@@ -293,8 +292,16 @@ void Protocol::run_cycle() {
   const int cycle = static_cast<int>(cycles_.size()) + 1;
   Simulation simulation = cycles_.empty() ? sparse_ : seized_[cycles_.back()].state;
   if (cycle > 1) agitate(simulation, rms_speed_, agitation_);
+  // Expected: the first cycle seizes at most at random close packing (solid fraction 0.64); a later
+  // one about where the cycle before it did, from its own start.
+  constexpr double random_close_packing = 0.64;
+  const double start_volume = simulation.cell().volume();
+  const double expected = cycle == 1
+                              ? std::log(random_close_packing * start_volume / simulation.solid_volume())
+                              : last_compaction_strain_;
   const std::int64_t steps = compact_until_seized(simulation, -rate_, config_.prepare, logger_,
-                                                  fmt::format("compaction cycle {}", cycle));
+                                                  fmt::format("compaction cycle {}", cycle), expected);
+  last_compaction_strain_ = std::log(start_volume / simulation.cell().volume());
   const StateMeasures m = simulation.measure();
   logger_->info("cycle {:2d}: seized after {} steps at e = {:.4f}, Z = {:.3f}", cycle, steps, m.void_ratio,
                 m.coordination);
@@ -321,9 +328,9 @@ bool Protocol::refine(double aim) {
   ++refinements_;
   Simulation simulation = base.state;
   agitate(simulation, rms_speed_ * std::sqrt(energy), refinement_stream_);
-  const std::int64_t steps =
-      compact_until_seized(simulation, -rate_, config_.prepare, logger_,
-                           fmt::format("refinement {} of cycle {}", refinements_, cycle));
+  const std::int64_t steps = compact_until_seized(
+      simulation, -rate_, config_.prepare, logger_,
+      fmt::format("refinement {} of cycle {}", refinements_, cycle), last_compaction_strain_);
   const StateMeasures m = simulation.measure();
   logger_->info(
       "refinement {} of cycle {} (agitation energy x {:.3f}, aiming at e = {:.4f}): seized after {} "

@@ -62,9 +62,12 @@ void Simulation::rebuild_decomposition() {
   neighbors_.build(particles_, cell_, carried);
 }
 
-void Simulation::compute_forces() {
-  const ForcePass pass = compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material,
-                                                settings_.time_step, contact_input(), neighbors_, bodies_);
+void Simulation::compute_forces(bool measure) {
+  if (measure) contact_sums_ = ContactSums{};
+  const ForcePass pass =
+      compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material, settings_.time_step,
+                             contact_input(), neighbors_, bodies_, measure ? &contact_sums_ : nullptr);
+  contact_sums_step_ = measure ? step_ + 1 : -1; // the forces of the step being taken
   // Explosion guard: an overlap this large means the step or the loading rate is far too large.
   // Every rank must stop together, so the verdict is shared before anyone throws.
   const bool exploded = !(pass.worst_overlap <= settings_.explosion_overlap);
@@ -80,14 +83,18 @@ void Simulation::compute_forces() {
 }
 
 void Simulation::update_control() {
-  stress_ = average_stress(particles_, cell_, neighbors_, comm());
+  // The force pass of this step summed the contacts if it knew a control update would follow;
+  // otherwise (a control update outside step()) one traversal does: the same exact sums.
+  const ControlMeasures measures = reduce_control_measures(
+      contact_sums_step_ == step_ ? contact_sums_ : sum_contacts(particles_, neighbors_), particles_, cell_,
+      comm());
+  stress_ = measures.stress;
   if (!std::isfinite(stress_.sum())) {
     throw NumericalError(fmt::format("step {}: the stress is not finite: the run exploded", step_));
   }
   if (watch_equilibrium_ || settings_.global_damping > 0) update_equilibrium();
   const double interval = static_cast<double>(settings_.control_interval) * settings_.time_step;
-  update_strain_rates(control_, stress_, axial_stiffness(neighbors_, particles_, cell_.volume(), comm()),
-                      interval, settings_.servo);
+  update_strain_rates(control_, stress_, measures.stiffness, interval, settings_.servo);
 }
 
 void Simulation::update_equilibrium() {
@@ -144,7 +151,7 @@ void Simulation::step() {
     halo_.update_ghosts(particles_, domain_);
     neighbors_.set_motion(motion);
   }
-  compute_forces();
+  compute_forces((step_ + 1) % settings_.control_interval == 0);
   kick(particles_, 0.5 * dt);
   if (damping_rate_ > 0) damp_velocities(particles_, damping_factor);
   time_ += dt;

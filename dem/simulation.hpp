@@ -116,7 +116,8 @@ public:
   [[nodiscard]] ContactInput contact_input() const { return {&shapes_, settings_.hertz_radius}; }
 
 private:
-  void compute_forces();
+  /// The force pass; with `measure`, it also fills contact_sums_ for the control update that follows.
+  void compute_forces(bool measure = false);
   [[nodiscard]] double restored_hertz_radius(std::uint32_t i, std::uint32_t j,
                                              const ContactRecord& record) const;
   void update_control();
@@ -143,6 +144,8 @@ private:
   double damping_rate_ = 0; ///< gamma of the global damping [1/s]
   Equilibrium equilibrium_;
   bool watch_equilibrium_ = false;
+  ContactSums contact_sums_;            ///< this rank's contact sums of the last measuring force pass
+  std::int64_t contact_sums_step_ = -1; ///< the step whose forces they sum (-1: none)
 };
 
 } // namespace aniso::dem

@@ -69,9 +69,12 @@ std::int64_t walls_code(FaceKind walls) {
 
 void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
   std::vector<std::int64_t> axis, walls, steps;
-  std::vector<double> momentum, gradient, seconds, reynolds;
+  std::vector<double> momentum, gradient, seconds, reynolds, throat;
+  std::vector<std::uint8_t> crosses;
   std::string names;
   for (const FlowRun& run : runs) {
+    throat.push_back(run.throat_width);
+    crosses.push_back(run.percolates ? 1 : 0);
     axis.push_back(run.axis + 1);
     walls.push_back(walls_code(run.walls));
     steps.push_back(run.result.steps);
@@ -94,6 +97,14 @@ void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
   group_runs.write_dataset<double>("seconds", seconds, {n_runs}, "s", "wall time of the run");
   group_runs.write_dataset<double>("reynolds", reynolds, {n_runs}, "1",
                                    "permeability Reynolds number |<j>| sqrt(K) / nu, K = nu |<j>| / |F|");
+  group_runs.write_dataset<double>(
+      "throat_width", throat, {n_runs}, "voxel",
+      "narrowest throat along the run's axis: 2 r - 1 for the largest r such that "
+      "voids at least r from the solid cross the cell (inf: no solid)");
+  group_runs.write_dataset<std::uint8_t>(
+      "percolates", crosses, {n_runs}, "1",
+      "1: void voxels cross the cell along the axis; 0: none do, no flow was "
+      "run and K is zero along the axis");
   group_runs.write_dataset<double>("mean_momentum", momentum, {n_runs, 3}, "lattice",
                                    "superficial momentum <j> (mean over all voxels) at convergence");
   group_runs.write_dataset<double>("pressure_gradient", gradient, {n_runs, 3}, "lattice",
@@ -205,6 +216,11 @@ DirectionFile read_direction(const std::string& path) {
   // Written since 2026-12-03; older files read as NaN (not recorded).
   const auto reynolds = runs.has_child("reynolds") ? runs.read_dataset<double>("reynolds", {n})
                                                    : std::vector<double>(n, std::nan(""));
+  // Written since 2026-12-04; older files: not recorded (NaN), and every run crossed the cell.
+  const auto throat = runs.has_child("throat_width") ? runs.read_dataset<double>("throat_width", {n})
+                                                     : std::vector<double>(n, std::nan(""));
+  const auto crosses = runs.has_child("percolates") ? runs.read_dataset<std::uint8_t>("percolates", {n})
+                                                    : std::vector<std::uint8_t>(n, 1);
   const auto momentum = runs.read_dataset<double>("mean_momentum", {n, 3});
   const auto gradient = runs.read_dataset<double>("pressure_gradient", {n, 3});
   for (std::size_t r = 0; r < n; ++r) {
@@ -218,6 +234,8 @@ DirectionFile read_direction(const std::string& path) {
     run.result.steps = steps[r];
     run.result.seconds = seconds[r];
     run.result.reynolds = reynolds[r];
+    run.throat_width = throat[r];
+    run.percolates = crosses[r] != 0;
     for (std::size_t a = 0; a < 3; ++a) {
       run.result.mean_momentum[static_cast<Eigen::Index>(a)] = momentum[3 * r + a];
       run.result.pressure_gradient[static_cast<Eigen::Index>(a)] = gradient[3 * r + a];

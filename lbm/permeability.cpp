@@ -4,6 +4,7 @@
 #include "lbm/partition.hpp"
 #include "lbm/percolation.hpp"
 #include "lbm/petsc_log.hpp"
+#include "lbm/throats.hpp"
 #include "lbm/topology.hpp"
 #include "lbm/trt.hpp"
 
@@ -28,13 +29,31 @@ FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settin
                  const mpi::Comm& comm, const Logger& logger) {
   const LogEvents events = lbm_log_events();
   const Faces faces = walls == FaceKind::periodic ? all_periodic : walled_except(axis, walls);
+  const std::string image_name = image.source.empty() ? "the image" : "the image of " + image.source;
+  const double throat = throat_widths(image)[static_cast<std::size_t>(axis)];
+  if (walls == FaceKind::periodic && throat == 0) {
+    // No path crosses the cell along the axis: K is zero along it, and no flow needs running.
+    logger->warn("{}: its pore space does not connect across the cell along x{} (no path of void voxels, "
+                 "joined by the D3Q19 links, wraps around it): K{}{} = 0 and the x{} row and column of K "
+                 "are zero. A coarse image closes throats: check voxel.resolution",
+                 image_name, axis + 1, axis + 1, axis + 1, axis + 1);
+    FlowRun closed{axis, walls, FlowResult{}};
+    closed.percolates = false;
+    closed.throat_width = 0;
+    return closed;
+  }
+  if (throat < kResolvedThroatWidth)
+    logger->warn(
+        "{}: the narrowest throat along x{} is {:.1f} voxels wide, below {:g}: bounce-back resolves "
+        "it too coarsely and K{}{} may be off by more than 2% (docs/methods/lbm.md, where the method "
+        "fails); a finer voxel.resolution widens it",
+        image_name, axis + 1, throat, kResolvedThroatWidth, axis + 1, axis + 1);
   require_input(percolates(image, axis, faces),
                 fmt::format("{}: its pore space does not connect across the cell along x{} (no path of "
                             "void voxels, joined by the D3Q19 links, wraps around it): the permeability "
                             "along x{} is zero and cannot be measured by flow. A coarse image closes "
                             "throats: check voxel.resolution",
-                            image.source.empty() ? "the image" : "the image of " + image.source, axis + 1,
-                            axis + 1));
+                            image_name, axis + 1, axis + 1));
   Topology topology;
   {
     ScopedStage stage(events, events.setup);
@@ -46,6 +65,7 @@ FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settin
   flow.force[axis] = settings.body_force;
   flow.label = fmt::format("flow along x{} ({} side faces)", axis + 1, to_string(walls));
   FlowRun run{axis, walls, run_flow(topology, flow, comm, logger)};
+  run.throat_width = throat;
   logger->info(
       "{}: converged in {} steps ({:.1f} s, {:.3g} MFLUPS), <j> = ({:.4e}, {:.4e}, {:.4e}), Mach {:.2e}, "
       "Reynolds number {:.2e}",
@@ -134,6 +154,12 @@ PermeabilityResult assemble_permeability(Method method, std::vector<FlowRun> run
     for (int axis = 0; axis < 3; ++axis)
       result.k_lattice.col(axis) =
           nu * find(axis, FaceKind::periodic).result.mean_momentum / settings.body_force;
+    // An axis no path crosses carries no flux whatever drives it: its row and column are zero.
+    for (int axis = 0; axis < 3; ++axis)
+      if (!find(axis, FaceKind::periodic).percolates) {
+        result.k_lattice.row(axis).setZero();
+        result.k_lattice.col(axis).setZero();
+      }
     result.symmetry_error =
         (result.k_lattice - result.k_lattice.transpose()).norm() / std::max(result.k_lattice.norm(), 1e-300);
   } else {
@@ -151,7 +177,8 @@ PermeabilityResult assemble_permeability(Method method, std::vector<FlowRun> run
   // Each diagonal is a flux along the push: a non-positive one is a run that did not measure a
   // flow, never a permeability (the percolation check above makes it a bug, not an input).
   for (int axis = 0; axis < 3; ++axis)
-    if (!(result.k_lattice(axis, axis) > 0))
+    if (!(result.k_lattice(axis, axis) > 0) &&
+        !(method == Method::periodic_body_force && !find(axis, FaceKind::periodic).percolates))
       throw NumericalError(fmt::format("K{}{} = {:.4g} (lattice units) is not positive: the flow along x{} "
                                        "carries no net flux",
                                        axis + 1, axis + 1, result.k_lattice(axis, axis), axis + 1));

@@ -5,7 +5,7 @@
 // that cubical complex. Each lattice vertex contributes what the 2x2x2 voxels around it decide
 // (a 256-entry table), so chi is one pass over the image.
 
-#include "voxel/grid.hpp"
+#include "common/voxel_grid.hpp"
 
 #include <cstdint>
 #include <span>

@@ -10,8 +10,8 @@
 // m >= l along x_i is covered by translates of the spar, a shorter one is not, so the opening keeps
 // exactly the runs of length >= l (periodic wrap; an all-void line is a run of infinite length).
 
-#include "voxel/distance_transform.hpp"
-#include "voxel/grid.hpp"
+#include "common/distance_transform.hpp"
+#include "common/voxel_grid.hpp"
 
 #include <cstdint>
 #include <span>

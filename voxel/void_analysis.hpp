@@ -9,7 +9,7 @@
 // is an exact integer count).
 
 #include "common/mpi.hpp"
-#include "voxel/grid.hpp"
+#include "common/voxel_grid.hpp"
 
 #include <array>
 #include <cstdint>

@@ -2,7 +2,7 @@
 // Test helpers for the voxel stage: random periodic images and brute-force references (the
 // definitions, evaluated literally: erosion then dilation with the structuring element, periodic
 // wrap; distance as a minimum over all voxels and images).
-#include "voxel/grid.hpp"
+#include "common/voxel_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

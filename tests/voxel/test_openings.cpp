@@ -3,7 +3,7 @@
 // axes and several sizes; the distance transforms equal brute-force minima (3D, in-plane, capped);
 // thread count does not change any bit.
 #include "tests/voxel/reference.hpp"
-#include "voxel/distance_transform.hpp"
+#include "common/distance_transform.hpp"
 #include "voxel/openings.hpp"
 
 #include <gtest/gtest.h>

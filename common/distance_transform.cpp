@@ -1,4 +1,4 @@
-#include "voxel/distance_transform.hpp"
+#include "common/distance_transform.hpp"
 
 #include <algorithm>
 #include <cmath>

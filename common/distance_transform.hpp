@@ -8,7 +8,7 @@
 // holds the nearest image of every voxel. Lines are independent, so OpenMP threads give the same
 // bits as one thread.
 
-#include "voxel/grid.hpp"
+#include "common/voxel_grid.hpp"
 
 #include <cstdint>
 #include <span>
