@@ -45,9 +45,10 @@ FlowRun run_axis(const h5::VoxelImage& image, const PermeabilitySettings& settin
   if (throat < kResolvedThroatWidth)
     logger->warn(
         "{}: the narrowest throat along x{} is {:.1f} voxels wide, below {:g}: bounce-back resolves "
-        "it too coarsely and K{}{} may be off by more than 2% (docs/methods/lbm.md, where the method "
+        "it coarsely and K{}{} may be off by {} (sphere arrays, docs/methods/lbm.md, where the method "
         "fails); a finer voxel.resolution widens it",
-        image_name, axis + 1, throat, kResolvedThroatWidth, axis + 1, axis + 1);
+        image_name, axis + 1, throat, throat < kCoarseThroatWidth ? kCoarseThroatWidth : kResolvedThroatWidth,
+        axis + 1, axis + 1, throat < kCoarseThroatWidth ? "tens of per cent" : "up to 8%");
   require_input(percolates(image, axis, faces),
                 fmt::format("{}: its pore space does not connect across the cell along x{} (no path of "
                             "void voxels, joined by the D3Q19 links, wraps around it): the permeability "

@@ -47,10 +47,13 @@ struct FlowRun {
   double throat_width = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Below this throat width (voxels) the periodic method's K is off by more than 2% on the
-/// measured cases (simple cubic sphere arrays against Zick & Homsy, docs/methods/lbm.md, "Where
-/// the method fails"): a warning names the width and the axis.
-inline constexpr double kResolvedThroatWidth = 5.0;
+/// Throat widths (voxels) below which the periodic method's K strays, measured on simple cubic
+/// sphere arrays against Zick & Homsy (docs/charts/lbm_throat_error.png, docs/methods/lbm.md,
+/// "Where the method fails"): below kResolvedThroatWidth errors reach 8% (beyond the 2% of a
+/// resolved flow), below kCoarseThroatWidth from -45% to +65%. A warning names the width, the
+/// axis and the band.
+inline constexpr double kResolvedThroatWidth = 17.0;
+inline constexpr double kCoarseThroatWidth = 6.0;
 
 /// Above this permeability Reynolds number (FlowResult::reynolds) inertia biases K by more than
 /// about 0.05% (-2e-3 Re^2, measured on a dilute sphere array): a warning names the run.

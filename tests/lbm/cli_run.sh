@@ -3,7 +3,8 @@
 # contract's datasets; --direction runs plus collect give the same tensor (a missing direction
 # file is named, exit 3); a diverging run exits 4 (numerical failure), names the cause, and leaves the
 # earlier result untouched; a run past its step limit exits 5; collect refuses direction files of
-# different settings; an image whose pore space does not percolate is refused (exit 2).
+# different settings; an axis the pore space does not cross gets K = 0 and a warning naming it; a
+# narrow throat is warned about with its width.
 # usage: cli_run.sh ANISO_LBM MAKE_LBM_IMAGE MPIEXEC
 set -euo pipefail
 lbm=$1 make_image=$2 mpiexec=$3
@@ -88,9 +89,10 @@ set -e
 [ "$code" -eq 2 ] || { cat "$work/short.log"; fail "a 50-step limit exited $code, expected 2"; }
 grep -q "lbm.max_steps = 50 is below two convergence checks" "$work/short.log" ||
   { cat "$work/short.log"; fail "a 50-step limit is not explained"; }
-# A pore space that does not connect across the cell along x1 (a solid plane) has no flow to
-# measure along it: refused before any run (it gave K11 = -1.8e-13 m^2 with exit 0).
-/usr/bin/python3 - "$work/cell.h5" "$work/walled.h5" <<'PY'
+# A pore space that does not connect across the cell along x1 (a solid plane) carries no flow
+# along it: K11 = 0 and the x1 row and column are zero, with a warning naming x1 (it gave K11 =
+# -1.8e-13 m^2 with exit 0, later a refusal of the whole tensor).
+/usr/bin/python3 - "$work/cell.h5" "$work/walled.h5" "$work/slit.h5" <<'PY'
 import shutil, sys, h5py
 shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "r+") as f:
@@ -98,12 +100,34 @@ with h5py.File(sys.argv[2], "r+") as f:
     solid = phase[...]
     solid[:, :, 5] = 1  # dims [n3, n2, n1]: the plane x1 = 5
     phase[...] = solid
+# A slit 3 voxels wide between solid planes normal to x3: a narrow throat along x1 and x2.
+shutil.copy(sys.argv[1], sys.argv[3])
+with h5py.File(sys.argv[3], "r+") as f:
+    phase = f["image/phase"]
+    solid = phase[...]
+    solid[...] = 1
+    solid[2:5, :, :] = 0
+    phase[...] = solid
 PY
-set +e
-"$lbm" --input "$work/walled.h5" --set lbm.output_dir="\"$work/walled\"" > "$work/walled.log" 2>&1
-code=$?
-set -e
-[ "$code" -eq 2 ] && grep -q "pore space does not connect across the cell along x1" "$work/walled.log" ||
-  { cat "$work/walled.log"; fail "a walled image exited $code, expected 2 naming x1"; }
-[ ! -e "$work/walled/permeability_walled.h5" ] || fail "a walled image wrote a permeability"
+"$lbm" --input "$work/walled.h5" --set lbm.output_dir="\"$work/walled\"" > "$work/walled.log" 2>&1 ||
+  { cat "$work/walled.log"; fail "a walled image failed"; }
+grep -q "pore space does not connect across the cell along x1.*K11 = 0" "$work/walled.log" ||
+  { cat "$work/walled.log"; fail "a walled image gave no warning naming x1"; }
+/usr/bin/python3 - "$work/walled/permeability_walled.h5" <<'PY' || fail "a walled image's K is wrong"
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1]) as f:
+    g = f["permeability"]
+    k, runs = g["K_lattice"][...], g["runs"]
+    assert (k[0, :] == 0).all() and (k[:, 0] == 0).all(), k
+    assert k[1, 1] > 0 and k[2, 2] > 0, k
+    assert list(runs["percolates"][...]) == [0, 1, 1], runs["percolates"][...]
+    assert runs["throat_width"][0] == 0 and (runs["throat_width"][1:] > 0).all(), runs["throat_width"][...]
+    print(f"walled image: K_lattice diagonal {np.diag(k)}, throat widths {runs['throat_width'][...]}")
+PY
+"$lbm" --input "$work/slit.h5" --set lbm.output_dir="\"$work/slit\"" --set lbm.convergence.tolerance=1e-4 \
+  > "$work/slit.log" 2>&1 || { cat "$work/slit.log"; fail "a slit image failed"; }
+grep -q "the narrowest throat along x1 is 3.0 voxels wide" "$work/slit.log" &&
+  grep -q "the narrowest throat along x2 is 3.0 voxels wide" "$work/slit.log" &&
+  grep -q "does not connect across the cell along x3" "$work/slit.log" ||
+  { cat "$work/slit.log"; fail "a 3-voxel slit gave no throat warnings"; }
 echo "cli_run.sh: all checks passed"

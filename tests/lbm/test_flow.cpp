@@ -158,10 +158,16 @@ TEST(Flow, StepLimitIsAConvergenceError) {
   EXPECT_THROW(static_cast<void>(axis_permeability(image, settings)), ConvergenceError);
 }
 
-TEST(Flow, NoPoreSpaceIsRejected) {
+TEST(Flow, NoPoreSpaceCarriesNoFlow) {
+  // No void voxel crosses the cell: K = 0 along the axis exactly, and no flow is run.
   h5::VoxelImage image = plane_channel(4, 4, 2);
   std::fill(image.phase.begin(), image.phase.end(), std::uint8_t{1});
-  EXPECT_THROW(static_cast<void>(axis_permeability(image, converged_settings())), InputError);
+  const FlowRun run =
+      run_axis(image, converged_settings(), 0, FaceKind::periodic, world, make_silent_logger());
+  EXPECT_FALSE(run.percolates);
+  EXPECT_EQ(run.throat_width, 0.0);
+  EXPECT_EQ(run.result.steps, 0);
+  EXPECT_EQ(axis_permeability(image, converged_settings()), 0.0);
 }
 
 TEST(InverseProblem, RecoversOffDiagonalTermsExactly) {
