@@ -2,8 +2,8 @@
 // element, periodic wrap) bit for bit, on random periodic images, for all three templates, all
 // axes and several sizes; the distance transforms equal brute-force minima (3D, in-plane, capped);
 // thread count does not change any bit.
-#include "tests/voxel/reference.hpp"
 #include "common/distance_transform.hpp"
+#include "tests/voxel/reference.hpp"
 #include "voxel/openings.hpp"
 
 #include <gtest/gtest.h>
