@@ -26,9 +26,13 @@ LbmConfig read_lbm_config(config::Reader& reader) {
                       "TRT relaxation time of the symmetric moments; viscosity nu = (tau - 1/2)/3");
   f.magic = reader.real("lbm.magic", 3.0 / 16.0, "1", Range::positive(),
                         "TRT magic parameter Lambda; 3/16 puts halfway bounce-back walls exactly midway");
-  p.body_force =
-      reader.real("lbm.body_force", 1e-5, "lattice", Range::open_closed(0.0, 1e-1),
-                  "driving force density in lattice units (velocity and Mach number scale with it)");
+  p.body_force = reader.real("lbm.body_force", 0.0, "lattice", Range::closed(0.0, 1e-1),
+                             "driving force density in lattice units (velocity and Mach number scale with "
+                             "it); 0: chosen from the image for lbm.target_reynolds (docs/methods/lbm.md)");
+  p.target_reynolds =
+      reader.real("lbm.target_reynolds", 0.05, "1", Range::open_closed(0.0, 1.0),
+                  "permeability Reynolds number |<j>| sqrt(K) / nu the automatic force aims at "
+                  "(inertia biases K by about -2e-3 Re^2)");
   f.tolerance = reader.real("lbm.convergence.tolerance", 1e-5, "1", Range::open(0.0, 1.0),
                             "converged when the mean velocity changes by less than this fraction per check "
                             "interval");

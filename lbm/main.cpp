@@ -4,6 +4,7 @@
 #include "common/h5/image.hpp"
 #include "common/output_folder.hpp"
 #include "lbm/config.hpp"
+#include "lbm/force_choice.hpp"
 #include "lbm/io.hpp"
 #include "lbm/permeability.hpp"
 #include "lbm/petsc_session.hpp"
@@ -114,27 +115,30 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
                config.permeability.flow.precision == lbm::Precision::float32 ? "single" : "double", path);
   if (options.dry_run) return 0;
 
+  // The force is resolved once per image, so that direction files of one image agree on it.
+  lbm::PermeabilitySettings settings = config.permeability;
+  settings.body_force = lbm::resolve_body_force(image, settings, logger);
   const lbm::PetscSession petsc(config.petsc_options);
   const auto provenance =
       h5::make_provenance("aniso-lbm", reader.effective_toml(), cli::join_command_line(argc, argv), comm);
   if (direction >= 0) {
     // A run that diverges or does not converge throws here: nothing is written.
-    const auto runs = lbm::run_direction(image, config.permeability, direction, comm, logger);
+    const auto runs = lbm::run_direction(image, settings, direction, comm, logger);
     const std::string direction_file = lbm::direction_path(config.output_dir, input, direction);
     if (comm.is_root()) {
       create_output_folder(config.output_dir);
-      lbm::write_direction(direction_file, runs, direction, image, config.permeability, provenance);
+      lbm::write_direction(direction_file, runs, direction, image, settings, provenance);
       logger->info("wrote {}", direction_file);
     }
     comm.barrier();
     return 0;
   }
   // A run that diverges or does not converge throws here: nothing is written.
-  const lbm::PermeabilityResult result = lbm::compute_permeability(image, config.permeability, comm, logger);
+  const lbm::PermeabilityResult result = lbm::compute_permeability(image, settings, comm, logger);
   log_tensor(result, image.voxel_size, logger);
   if (comm.is_root()) {
     create_output_folder(config.output_dir);
-    lbm::write_permeability(path, result, image, config.permeability, provenance);
+    lbm::write_permeability(path, result, image, settings, provenance);
     logger->info("wrote {}", path);
     if (config.write_velocity) {
       const std::string velocity_path = lbm::result_path(config.output_dir, "velocity", input);

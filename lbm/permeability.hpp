@@ -32,8 +32,9 @@ std::string to_string(Method method);
 
 struct PermeabilitySettings {
   Method method = Method::periodic_body_force;
-  FlowSettings flow;        ///< force is set per run from body_force
-  double body_force = 1e-5; ///< magnitude of the driving force density [lattice]
+  FlowSettings flow;             ///< force is set per run from body_force
+  double body_force = 1e-5;      ///< magnitude of the driving force density [lattice]; 0: from the image
+  double target_reynolds = 0.05; ///< the automatic force's permeability Reynolds number (force_choice.hpp)
 };
 
 struct FlowRun {
