@@ -20,12 +20,12 @@ public:
   ExactSum() { limbs_.fill(0); }
 
   /// Adds one finite term; non-finite terms set a flag that makes value() return NaN. Inline: the
-  /// stress sums call it nine times a contact.
+  /// control update calls it twelve times a contact (dem/contact_sums.hpp).
   void add(double term) {
     std::uint64_t bits = 0;
     std::memcpy(&bits, &term, sizeof bits);
     const auto biased_exponent = static_cast<int>((bits >> 52) & 0x7ff);
-    // The fast lane (normal terms inside its window); everything else takes add_to_limbs.
+    // The fast lane (normal terms inside its window); everything else takes add_outside_lane.
     const int lane_shift = biased_exponent - 1075 - lane_lsb_;
     if (lane_set_ && biased_exponent != 0 && biased_exponent != 0x7ff && lane_shift >= 0 &&
         lane_shift <= lane_span) {
