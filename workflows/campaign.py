@@ -11,6 +11,8 @@ usage:
                                        reads its own section (`--print-config`, the stage's own validator)
                                        and the [workflow] section is checked against the checkpoints
   campaign.py resources CONFIG         the SLURM resources of [workflow.resources] as JSON, validated
+  campaign.py layout OUT               refuses a run folder with the flat layout of before 2026-12-04
+  campaign.py regroup OUT              moves such a folder's files into their stage folders
 
 `stages` prints one word per usable stage, then the optional command lines
 they offer (lbm-directions: one LBM run per flow direction); for every other
@@ -38,7 +40,14 @@ The SLURM resources of each kind of job (slurm/submit.py), all optional:
   ranks = 2                      (a number with K, M, G or T), --ntasks of an MPI job (the
   cpus_per_task = 1              collect, series and report jobs are serial), --cpus-per-task
 
-`load-input` resumes from the newest checkpoint of this run that history.h5
+A run folder keeps each stage's files in a folder of its own (docs/user-guide.md, "The run
+folder"): dem/ (prepared.h5, load_NNN.h5, history), fabric/, probe/, voxel/, lbm/, beside
+figures/, logs/, slurm/ and report.md. Until 2026-12-04 they all lay in the run folder itself;
+`layout` stops a campaign on such a folder (it would otherwise start the DEM again beside the
+old files) and `regroup` moves the files (renames keep their times, so make and the resume
+point see them as before).
+
+`load-input OUT` (OUT the DEM's folder) resumes from the newest checkpoint of this run that history.h5
 already covers (history.h5 is rewritten just after each checkpoint, so a kill
 between the two leaves the newer checkpoint uncovered) and that is newer than
 prepared.h5 and the config; otherwise it starts from prepared.h5, with --overwrite
@@ -291,6 +300,51 @@ def load_input(out, config):
     return ["--input", newest, "--resume"]
 
 
+# The files each stage writes into its folder, by name (docs/formats/ of each stage).
+STAGE_FILES = {
+    "dem": r"prepared\.h5|load_(\d{3,}|interrupted)\.h5|history\.(h5|csv)|load\.done|\.aniso-dem\.lock",
+    "fabric": r"fabric(_series)?(_correlations)?\.(h5|csv)",
+    "probe": r"probe_.+\.(h5|csv)",
+    "voxel": r"(image|voids)_.+\.(h5|csv|xmf)",
+    "lbm": r"permeability_.+\.(h5|csv|xmf)",
+}
+
+
+def flat_files(out):
+    """{stage: [file names]} of the stage files lying in OUT itself (the layout before 2026-12-04)."""
+    names = sorted(os.listdir(out)) if os.path.isdir(out) else []
+    found = {}
+    for stage, pattern in STAGE_FILES.items():
+        files = [n for n in names if re.fullmatch(pattern, n) and os.path.isfile(os.path.join(out, n))]
+        if files:
+            found[stage] = files
+    return found
+
+
+def check_layout(out):
+    found = flat_files(out)
+    if found:
+        count = sum(len(files) for files in found.values())
+        fail(f"{out} holds {count} stage files in the run folder itself (the layout before 2026-12-04, "
+             f"e.g. {next(iter(found.values()))[0]}); each stage now has its own folder. Move them with: "
+             f"{os.path.abspath(__file__)} regroup {out}")
+
+
+def regroup(out):
+    found = flat_files(out)
+    for stage, files in found.items():  # every clash is found before anything moves
+        for name in files:
+            if os.path.exists(os.path.join(out, stage, name)):
+                fail(f"cannot move {name} into {os.path.join(out, stage)}: a file of that name is there already "
+                     "(nothing was moved; move or delete one of them)", FILE_ERROR)
+    for stage, files in found.items():
+        folder = os.path.join(out, stage)
+        os.makedirs(folder, exist_ok=True)
+        for name in files:
+            os.rename(os.path.join(out, name), os.path.join(folder, name))
+        print(f"campaign: moved {len(files)} files into {folder}", file=sys.stderr)
+
+
 def main(argv):
     if len(argv) in (4, 5) and argv[1] == "checkpoints":
         print(" ".join(checkpoint_stems(*argv[2:])))
@@ -300,6 +354,10 @@ def main(argv):
         check_config(argv[2], argv[3])
     elif len(argv) == 3 and argv[1] == "resources":
         print(json.dumps(sbatch_resources(argv[2])))
+    elif len(argv) == 3 and argv[1] == "layout":
+        check_layout(argv[2])
+    elif len(argv) == 3 and argv[1] == "regroup":
+        regroup(argv[2])
     elif len(argv) == 4 and argv[1] == "load-input":
         print(" ".join(load_input(argv[2], argv[3])))
     else:

@@ -14,11 +14,15 @@ make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$run" B
 
 fail() { echo "e2e: FAIL: $*" >&2; exit 1; }
 # Every stage's results: a stage the campaign takes for not built would be skipped silently.
-for f in prepared.h5 load_000.h5 load_001.h5 load_002.h5 history.h5 history.csv report.md figures/stress_strain.png \
-         figures/stress_strain.csv probe_load_000.h5 probe_load_002.h5 voids_load_000.h5 voids_load_002.h5 \
-         permeability_image_load_000.h5 permeability_image_load_002.h5 fabric.h5 fabric_series.h5; do
+# Each stage's files lie in a folder of its own (issue 24).
+for f in dem/prepared.h5 dem/load_000.h5 dem/load_001.h5 dem/load_002.h5 dem/history.h5 dem/history.csv report.md \
+         figures/stress_strain.png figures/stress_strain.csv probe/probe_load_000.h5 probe/probe_load_002.h5 \
+         voxel/voids_load_000.h5 voxel/voids_load_002.h5 voxel/image_load_002.h5 \
+         lbm/permeability_image_load_000.h5 lbm/permeability_image_load_002.h5 fabric/fabric.h5 fabric/fabric_series.h5; do
   [ -s "$run/$f" ] || fail "missing output $f"
 done
+[ "$(ls "$run")" = "$(printf '%s\n' dem fabric figures lbm logs probe report.md voxel)" ] \
+  || fail "the run folder holds more than the stage folders, figures, logs and report.md: $(ls "$run")"
 ! grep -q 'campaign: skipping' "$work/campaign.log" || fail "the campaign skipped a stage: $(grep 'skipping' "$work/campaign.log")"
 # Each stage run keeps its own log in logs/, and its lines are prefixed with the run's name there
 # and in the campaign's output (issue 24).
@@ -28,13 +32,13 @@ for name in prepare load fabric probe_load_002_fork3 probe_collect_load_002 voxe
   ! grep -qv "^\[$name" "$log" || fail "a line of $log lacks the prefix [$name]: $(grep -v "^\[$name" "$log" | head -1)"
 done
 grep -q '^\[load\] .*info load done' "$work/campaign.log" || fail "the campaign's output lacks '[load] ... load done'"
-h5dump -H "$run/load_001.h5" > "$work/load_001.header" || fail "h5dump -H cannot read load_001.h5"
+h5dump -H "$run/dem/load_001.h5" > "$work/load_001.header" || fail "h5dump -H cannot read load_001.h5"
 grep -q 'schema_version' "$work/load_001.header" || fail "checkpoint header lacks schema_version"
-h5dump -H "$run/history.h5" > /dev/null || fail "h5dump -H cannot read history.h5"
+h5dump -H "$run/dem/history.h5" > /dev/null || fail "h5dump -H cannot read history.h5"
 /usr/bin/python3 - "$run" <<'PY' || fail "report numbers"
 import sys, h5py, numpy as np
 run = sys.argv[1]
-with h5py.File(f"{run}/history.h5") as f:
+with h5py.File(f"{run}/dem/history.h5") as f:
     h = {k: f["history"][k][()] for k in f["history"]}
 strain = -h["strain_11"]
 assert abs(strain[-1] - 0.01) < 1e-3, f"final strain {strain[-1]}"
@@ -49,13 +53,13 @@ PY
 # Resume from checkpoint 1 in a copy: checkpoint 2 must come out identical.
 resumed="$work/resumed"
 mkdir -p "$resumed"
-cp "$run/prepared.h5" "$run/load_000.h5" "$run/load_001.h5" "$run/history.h5" "$resumed/"
+cp "$run"/dem/{prepared.h5,load_000.h5,load_001.h5,history.h5} "$resumed/"
 "$build_dir/dem/aniso-dem" load --config "$source_dir/workflows/configs/e2e.toml" --set dem.output_dir="$resumed" \
   --input "$resumed/load_001.h5" --resume --log-level warn
 for group in /particles /contacts /cell; do
-  h5diff "$run/load_002.h5" "$resumed/load_002.h5" "$group" "$group" || fail "resumed run differs in $group"
+  h5diff "$run/dem/load_002.h5" "$resumed/load_002.h5" "$group" "$group" || fail "resumed run differs in $group"
 done
-h5diff "$run/history.h5" "$resumed/history.h5" /history /history || fail "resumed history differs"
+h5diff "$run/dem/history.h5" "$resumed/history.h5" /history /history || fail "resumed history differs"
 
 # Kill the whole campaign (SIGKILL, as a lost node would) once the load has
 # written its first checkpoint and history, then rerun it: the rerun must
@@ -65,19 +69,19 @@ killed="$work/killed"
 setsid make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$killed" BIN="$build_dir" \
   >"$work/killed.log" 2>&1 &
 campaign=$!
-until [ -e "$killed/history.h5" ]; do
+until [ -e "$killed/dem/history.h5" ]; do
   kill -0 "$campaign" 2>/dev/null || fail "the campaign ended before it could be interrupted: $(tail -3 "$work/killed.log")"
   sleep 0.02
 done
 kill -KILL -- "-$campaign"
 wait "$campaign" 2>/dev/null || true
-[ ! -e "$killed/load.done" ] || fail "the campaign finished before it was killed; nothing was interrupted"
-finished=$(cd "$killed" && ls prepared.h5 load_*.h5)
+[ ! -e "$killed/dem/load.done" ] || fail "the campaign finished before it was killed; nothing was interrupted"
+finished=$(cd "$killed" && ls dem/prepared.h5 dem/load_*.h5)
 stamps() { (cd "$killed" && stat -c '%n %Y %i' $finished); }
 before=$(stamps)
 make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$killed" BIN="$build_dir" \
   >"$work/rerun.log" 2>&1 || fail "the rerun after the kill failed: $(tail -5 "$work/rerun.log")"
-grep -q "resuming the interrupted load from $killed/load_00" "$work/rerun.log" \
+grep -q "resuming the interrupted load from $killed/dem/load_00" "$work/rerun.log" \
   || fail "the rerun did not resume the load from a checkpoint: $(grep -i 'load' "$work/rerun.log" | head -3)"
 ! grep -q 'aniso-dem prepare' "$work/rerun.log" || fail "the rerun redid the preparation"
 [ "$before" = "$(stamps)" ] || fail "the rerun rewrote finished files: $before"

@@ -99,7 +99,7 @@ def main(root_a, root_b):
     for folder, subfolders, files in os.walk(root_a):
         subfolders[:] = sorted(d for d in subfolders if not (folder == root_a and d in ("slurm", "logs")))
         for name in sorted(files):
-            if name.startswith(".") or (folder == root_a and name == "load.done"):
+            if name.startswith(".") or name == "load.done":
                 continue
             relative = os.path.relpath(os.path.join(folder, name), root_a)
             path_a, path_b = os.path.join(root_a, relative), os.path.join(root_b, relative)

@@ -17,7 +17,7 @@ rm -rf "$work"
 mkdir -p "$work"
 
 count=0
-for file in "$run"/*.h5; do
+for file in "$run"/*/*.h5; do  # every stage folder of the run
   h5dump -H "$file" > /dev/null || fail "h5dump -H cannot read $file"
   count=$((count + 1))
 done
@@ -55,12 +55,12 @@ assert drawn > 0.05 and colours > 10, "blank or flat frame"
 PY
 }
 
-image=$(ls "$run"/image_*.xmf | tail -1)
+image=$(ls "$run"/voxel/image_*.xmf | tail -1)
 render render_xdmf.py "$image" "$work/render.png"
 not_blank "$work/render.png"
 
 if [ -n "$binary_dir" ]; then
-  checkpoint=$(ls "$run"/load_[0-9]*.h5 | sort | tail -1)
+  checkpoint=$(ls "$run"/dem/load_[0-9]*.h5 | sort | tail -1)
   xmf="$work/particles_$(basename "$checkpoint" .h5).xmf"
   "$binary_dir/dem/aniso-dem" export --input "$checkpoint" --format xdmf --output "$xmf" > "$work/export.log" 2>&1 ||
     fail "aniso-dem export --format xdmf failed on $checkpoint: $(tail -3 "$work/export.log")"

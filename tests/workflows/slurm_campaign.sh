@@ -96,8 +96,8 @@ grep -q 'srun .*aniso-dem load' "$work"/slurm/slurm/load-*.log || fail "the load
 
 # The comparison itself must see a one-ulp change in one number.
 mkdir -p "$work/ulp/a" "$work/ulp/b"
-cp "$work/local/history.h5" "$work/ulp/a/"
-cp "$work/local/history.h5" "$work/ulp/b/"
+cp "$work/local/dem/history.h5" "$work/ulp/a/"
+cp "$work/local/dem/history.h5" "$work/ulp/b/"
 /usr/bin/python3 - "$work/ulp/b/history.h5" <<'PY'
 import sys, h5py, numpy as np
 with h5py.File(sys.argv[1], "r+") as f:
@@ -130,8 +130,9 @@ arrays=$work/arrays
 arrays_config=$work/arrays.toml
 sed 's/^checkpoint_strains = .*/checkpoint_strains = [1e-4]/' "$config" >"$arrays_config"
 touch -d '2000-01-01' "$arrays_config" # older than the copied run, which stays up to date
-mkdir -p "$arrays"
-cp -a "$work/slurm"/{prepared.h5,load_000.h5,history.h5,history.csv,load.done,figures} "$arrays/"
+mkdir -p "$arrays/dem"
+cp -a "$work/slurm"/dem/{prepared.h5,load_000.h5,history.h5,history.csv,load.done} "$arrays/dem/"
+cp -a "$work/slurm/figures" "$arrays/"
 fakebin=$work/fakebin
 mkdir -p "$fakebin"
 ln -s "$build_dir/dem" "$fakebin/dem"
@@ -156,14 +157,14 @@ done
 [[ $(grep -c 'completed$' "$work/arrays-failing.log") -eq 4 ]] \
   || fail "fabric, voxel, lbm and lbm-collect, which do not need the failed fork, did not complete: $(cat "$work/arrays-failing.log")"
 grep -q 'stage_double: failing on purpose' "$arrays"/slurm/probe-load_000-*_3.log || fail "fork 3's log lacks its error"
-[[ ! -e $arrays/probe_load_000_fork3.h5 && ! -e $arrays/probe_load_000.h5 ]] || fail "a failed step left a result"
-written_before=$(stat -c '%n %Y' "$arrays"/probe_load_000_fork[012456].h5 "$arrays"/voids_*.h5 "$arrays"/fabric.h5)
+[[ ! -e $arrays/probe/probe_load_000_fork3.h5 && ! -e $arrays/probe/probe_load_000.h5 ]] || fail "a failed step left a result"
+written_before=$(stat -c '%n %Y' "$arrays"/probe/probe_load_000_fork[012456].h5 "$arrays"/voxel/voids_*.h5 "$arrays"/fabric/fabric.h5)
 
 submit_arrays --wait 2>"$work/arrays.log" || fail "the resubmission failed: $(cat "$work/arrays.log")"
 [[ $(grep -v 'completed$' "$work/arrays.log" | grep -Eo '^submit: [^:]+: job [0-9]+' | cut -d' ' -f2 | tr '\n' ' ') == \
   "probe-load_000: probe-collect-load_000: series: report: " ]] \
   || fail "the resubmission should submit exactly the failed array, its collection, the series and the report: $(cat "$work/arrays.log")"
-[[ $written_before == "$(stat -c '%n %Y' "$arrays"/probe_load_000_fork[012456].h5 "$arrays"/voids_*.h5 "$arrays"/fabric.h5)" ]] \
+[[ $written_before == "$(stat -c '%n %Y' "$arrays"/probe/probe_load_000_fork[012456].h5 "$arrays"/voxel/voids_*.h5 "$arrays"/fabric/fabric.h5)" ]] \
   || fail "the resubmission rewrote finished results"
 /usr/bin/python3 - "$arrays" "$work/arrays-failing.log" "$work/arrays.log" <<'PY' || fail "job-array plumbing"
 import re, sys
@@ -183,25 +184,25 @@ stem = "load_000"
 assert [j[1] for j in jobs[f"probe-{stem}"]] == [" (array of 7)", " (tasks 3 of 7)"], jobs[f"probe-{stem}"]
 assert all(j[1] == " (array of 3)" for j in jobs[f"lbm-{stem}"]), jobs[f"lbm-{stem}"]
 for k in range(7):
-    f = fields(f"{run}/probe_{stem}_fork{k}.h5")
+    f = fields(f"{run}/probe/probe_{stem}_fork{k}.h5")
     expected = ids(f"probe-{stem}")[1 if k == 3 else 0]  # fork 3 ran again in the second submission
     assert f["SLURM_ARRAY_JOB_ID"] == expected and f["SLURM_ARRAY_TASK_ID"] == str(k) and f["fork"] == str(k), \
         f"fork {k}: {f}"
 for d in range(3):
-    f = fields(f"{run}/permeability_image_{stem}_direction{d}.h5")
+    f = fields(f"{run}/lbm/permeability_image_{stem}_direction{d}.h5")
     assert f["SLURM_ARRAY_JOB_ID"] == ids(f"lbm-{stem}")[0] and f["SLURM_ARRAY_TASK_ID"] == str(d) \
         and f["direction"] == str(d), f"direction {d}: {f}"
 for (job, _, after), upstream in zip(jobs[f"probe-collect-{stem}"], ids(f"probe-{stem}")):
     assert after == upstream, "probe collect must wait for its forks"
 assert jobs[f"lbm-{stem}"][0][2] == ids(f"voxel-{stem}")[0], "the LBM array must wait for its image"
 assert jobs[f"lbm-collect-{stem}"][0][2] == ids(f"lbm-{stem}")[0], "LBM collect must wait for its directions"
-assert fields(f"{run}/probe_{stem}.h5")["SLURM_JOB_ID"] == ids(f"probe-collect-{stem}")[-1]
+assert fields(f"{run}/probe/probe_{stem}.h5")["SLURM_JOB_ID"] == ids(f"probe-collect-{stem}")[-1]
 assert sorted(jobs["series"][0][2].split(",")) == sorted(j[0][0] for n, j in jobs.items()
                                                        if n not in ("series", "report")), \
     "the series must wait for every analysis job"
 assert sorted(jobs["report"][0][2].split(",")) == sorted(j[0][0] for n, j in jobs.items() if n != "report"), \
     "the report must wait for every other job"
-series = open(f"{run}/fabric_series.h5").read()
+series = open(f"{run}/fabric/fabric_series.h5").read()
 assert all(f"/{name}_{stem}.h5" in series for name in ("probe", "voids", "permeability_image")), series
 print(f"slurm_campaign: {len(jobs)} analysis steps, arrays, dependencies, failure and recovery as planned")
 PY

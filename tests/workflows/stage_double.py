@@ -24,6 +24,7 @@ def record(path, args, inputs):
     for needed in inputs:
         if not os.path.exists(needed):
             sys.exit(f"stage_double: input {needed} missing when writing {path}")
+    os.makedirs(os.path.dirname(path), exist_ok=True)  # as the stages make their output_dir
     with open(path + ".part", "w") as f:
         f.write(" ".join(f"{k}={v}" for k, v in job.items()) + "\n")
         f.write(f"stage={args.stage} command={args.command or '-'} fork={args.fork} direction={args.direction}\n")

@@ -151,6 +151,62 @@ class Stages(unittest.TestCase):
         self.assertRegex(result.stderr, r"^campaign.py: error \(bad input\): unknown command line no-such-command")
 
 
+class RunFolderLayout(unittest.TestCase):
+    """Each stage's files in a folder of its own; a run folder of the flat layout before 2026-12-04
+    is refused (the DEM would start again beside it) and regrouped on request (issue 24)."""
+
+    FLAT = {"dem": ["prepared.h5", "load_000.h5", "load_interrupted.h5", "history.h5", "history.csv", "load.done"],
+            "fabric": ["fabric.h5", "fabric_series.h5", "fabric_series_correlations.csv"],
+            "probe": ["probe_load_000_fork0.h5", "probe_load_000.h5", "probe_load_000.csv"],
+            "voxel": ["image_load_000.h5", "image_load_000.xmf", "voids_load_000.h5", "voids_load_000.csv"],
+            "lbm": ["permeability_image_load_000_direction2.h5", "permeability_image_load_000.h5"]}
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.out = self.dir.name
+        for k, name in enumerate(sum(self.FLAT.values(), []) + ["report.md", "notes.txt"]):
+            touch(os.path.join(self.out, name), 1000 + k)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_a_flat_folder_is_refused_with_the_command_that_regroups_it(self):
+        result = campaign("layout", self.out)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn(f"{self.out} holds 18 stage files in the run folder itself", result.stderr)
+        self.assertIn(f"campaign.py regroup {self.out}", result.stderr)
+
+    def test_make_refuses_a_flat_folder_before_the_dem(self):
+        result = subprocess.run(["make", "-s", "-C", WORKFLOWS, "campaign", f"OUT={self.out}", f"BIN={BUILD}"],
+                                capture_output=True, text=True)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("the layout before 2026-12-04", result.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.out, "dem")), "the DEM ran")
+
+    def test_regroup_moves_each_file_into_its_stage_folder_keeping_its_time(self):
+        times = {name: os.path.getmtime(os.path.join(self.out, name)) for name in sum(self.FLAT.values(), [])}
+        result = campaign("regroup", self.out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        for stage, names in self.FLAT.items():
+            self.assertEqual(sorted(os.listdir(os.path.join(self.out, stage))), sorted(names), stage)
+            for name in names:
+                self.assertEqual(os.path.getmtime(os.path.join(self.out, stage, name)), times[name], name)
+        self.assertEqual(sorted(os.listdir(self.out)), ["dem", "fabric", "lbm", "notes.txt", "probe", "report.md",
+                                                        "voxel"])
+        self.assertEqual(campaign("layout", self.out).returncode, 0)
+        self.assertEqual(campaign("layout", os.path.join(self.out, "missing")).returncode, 0)  # a new run
+
+    def test_regroup_overwrites_nothing(self):
+        os.mkdir(os.path.join(self.out, "probe"))
+        touch(os.path.join(self.out, "probe", "probe_load_000.h5"), 2000)
+        result = campaign("regroup", self.out)
+        self.assertEqual(result.returncode, 3)
+        self.assertIn("cannot move probe_load_000.h5", result.stderr)
+        self.assertEqual(os.path.getmtime(os.path.join(self.out, "probe", "probe_load_000.h5")), 2000)
+        self.assertTrue(os.path.exists(os.path.join(self.out, "probe_load_000.h5")))
+        self.assertFalse(os.path.exists(os.path.join(self.out, "dem")), "nothing moves when one file clashes")
+
+
 def e2e_with_workflow(folder, section):
     """The e2e config (checkpoints at strains 1e-4, 5e-3, 0.01) plus a [workflow] section."""
     with open(os.path.join(WORKFLOWS, "configs", "e2e.toml")) as f:
@@ -242,7 +298,7 @@ class WholeConfigCheck(unittest.TestCase):
         self.assertEqual(result.returncode, 2, result.stdout + result.stderr)
         self.assertIn(f"the [lbm] section of {self.config} is refused by aniso-lbm", result.stderr)
         self.assertIn("unknown config key 'lbm.tua'", result.stderr)
-        self.assertFalse(os.path.exists(os.path.join(self.out, "prepared.h5")), "the DEM ran")
+        self.assertFalse(os.path.exists(os.path.join(self.out, "dem", "prepared.h5")), "the DEM ran")
 
     def test_check_names_the_stage_and_the_key(self):
         self.assert_refused(campaign("check", self.config, BUILD))
@@ -255,7 +311,7 @@ class WholeConfigCheck(unittest.TestCase):
                                  f"OUT={self.out}", f"BIN={BUILD}"], capture_output=True, text=True)
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("unknown config key 'lbm.tua'", result.stderr)
-        self.assertFalse(os.path.exists(os.path.join(self.out, "prepared.h5")), "the DEM ran")
+        self.assertFalse(os.path.exists(os.path.join(self.out, "dem", "prepared.h5")), "the DEM ran")
 
     def test_submit_stops_before_submitting(self):
         result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config",
@@ -280,17 +336,18 @@ class SubmitDryRun(unittest.TestCase):
         with tempfile.TemporaryDirectory() as folder:
             bin_dir, out = os.path.join(folder, "bin"), os.path.join(folder, "run")
             os.mkdir(bin_dir)
-            os.mkdir(out)
+            os.makedirs(os.path.join(out, "dem"))
+            os.makedirs(os.path.join(out, "probe"))
             fake_bin(bin_dir, doubles=["fabric", "probe", "voxel", "lbm"])
             config = os.path.join(folder, "c.toml")
             with open(os.path.join(WORKFLOWS, "configs", "e2e.toml")) as f, open(config, "w") as g:
                 g.write(f.read())
             start = os.path.getmtime(config)
             for name, age in [("prepared.h5", 10), ("load.done", 20)] + [(f"load_00{k}.h5", 20) for k in range(3)]:
-                touch(os.path.join(out, name), start + age)
+                touch(os.path.join(out, "dem", name), start + age)
             for k in range(7):
                 if k != 3:
-                    touch(os.path.join(out, f"probe_load_001_fork{k}.h5"), start + 30)
+                    touch(os.path.join(out, "probe", f"probe_load_001_fork{k}.h5"), start + 30)
             result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config", config,
                                      "--out", out, "--bin", bin_dir, "--dry-run"], capture_output=True, text=True)
             self.assertEqual(result.returncode, 0, result.stderr)

@@ -2,7 +2,7 @@
 """The campaign report: key numbers and the figures, one line of reading each,
 with the paper's trends beside the run's.
 
-Reads the run folder (history.h5) and the CSV files the figure scripts wrote
+Reads the run folder (dem/history.h5) and the CSV files the figure scripts wrote
 into RUN_FOLDER/figures (stress_strain, fabric_correlations, stiffness, voids,
 permeability); a stage whose figure is missing is reported as not run.
 
@@ -109,7 +109,7 @@ def fabric_section(folder):
     best = PAPER_NAMES[ranked[0]] if ranked else "none"
     print(f"\nReading: over {n_points} checkpoints, {best} correlates best with the stress; in the paper "
           "H c-strong does (0.993, 0.988), and the strong-contact tensors rank above those of all contacts. "
-          "The numbers are in figures/fabric_correlations.csv and fabric_series.csv.\n")
+          "The numbers are in figures/fabric_correlations.csv and fabric/fabric_series.csv.\n")
     return [PAPER_NAMES[n] for n in ranked]
 
 
@@ -176,7 +176,7 @@ def permeability_section(folder):
 
 
 def main(folder):
-    h = read_history(f"{folder}/history.h5")
+    h = read_history(os.path.join(folder, "dem", "history.h5"))
     print("# aniso campaign report\n")
     print(f"Run folder: `{os.path.abspath(folder)}`\n")  # the make campaign passes it relative to workflows/
     peak = dem_section(folder, h)

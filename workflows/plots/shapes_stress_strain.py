@@ -5,7 +5,7 @@ volumetric strain against -eps11, plus the void ratio and the mean particle-axis
 Writes shapes_stress_strain.png and shapes_stress_strain.csv (the numbers behind the plot).
 
 usage: shapes_stress_strain.py OUTPUT_PREFIX LABEL=HISTORY [LABEL=HISTORY ...]   (history.h5 or history.csv)
-  e.g. shapes_stress_strain.py docs/charts/demo_shapes "alpha 1.0=runs/demo/history.h5" ...
+  e.g. shapes_stress_strain.py docs/charts/demo_shapes "alpha 1.0=runs/demo/dem/history.h5" ...
 """
 import csv
 import sys

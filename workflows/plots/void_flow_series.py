@@ -10,8 +10,9 @@ permeability.png (paper Fig. K_vs_strain): (K11 - K33)/tr K and (K22 - K33)/tr K
   diagonal of K against -eps11.
 The numbers behind each go to voids.csv and permeability.csv beside them.
 
-The loading strain of a result comes from the fabric series (fabric_series.h5, /checkpoints/<stem>),
-matched by the checkpoint content hash (source_hash) each result records.
+The loading strain of a result comes from the fabric series (fabric/fabric_series.h5, /checkpoints/<stem>),
+matched by the checkpoint content hash (source_hash) each result records. The results are read from the
+run folder's stage folders: voxel/voids_*.h5 and lbm/permeability_*.h5.
 
 usage: void_flow_series.py RUN_FOLDER OUTPUT_FOLDER
 """
@@ -31,7 +32,7 @@ AXES = ("1", "2", "3")
 
 def strain_by_hash(folder):
     """checkpoint content hash -> -eps11, from the fabric series of the run."""
-    path = os.path.join(folder, "fabric_series.h5")
+    path = os.path.join(folder, "fabric", "fabric_series.h5")
     if not os.path.exists(path):
         sys.exit(f"void_flow_series.py: {path} is missing: the strains come from the fabric series")
     with h5py.File(path, "r") as f:
@@ -61,7 +62,7 @@ def read_voids(path):
 
 
 def draw_voids(folder, output, strains):
-    paths = sorted(glob.glob(os.path.join(folder, "voids_*.h5")))
+    paths = sorted(glob.glob(os.path.join(folder, "voxel", "voids_*.h5")))
     if not paths:
         return None
     results = sorted(((strain_of(p, "voids", strains), read_voids(p)) for p in paths), key=lambda r: r[0])
@@ -114,7 +115,7 @@ def draw_voids(folder, output, strains):
 
 
 def draw_permeability(folder, output, strains):
-    paths = [p for p in sorted(glob.glob(os.path.join(folder, "permeability_*.h5"))) if "_direction" not in p]
+    paths = [p for p in sorted(glob.glob(os.path.join(folder, "lbm", "permeability_*.h5"))) if "_direction" not in p]
     if not paths:
         return None
     results = []
