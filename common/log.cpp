@@ -48,22 +48,33 @@ Progress::Progress(Logger logger, std::string label, double total, double interv
       interval_(interval_seconds), clock_(clock ? std::move(clock) : Clock([] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
       })),
-      start_(clock_()), last_print_(start_) {}
+      start_(clock_()), last_print_(start_), printed_{{start_, from}} {}
 
 std::string Progress::line(double done) const {
-  const double elapsed = clock_() - start_;
+  const double now = clock_();
+  const double elapsed = now - start_;
   const double fraction = total_ > 0 ? done / total_ : 0.0;
-  const double advanced = done - from_;
-  const double remaining = advanced > 0 ? elapsed * (total_ - done) / advanced : NAN;
+  // The pace since the last print at least half the elapsed time ago (the start if none).
+  auto since = printed_.front();
+  for (const auto& sample : printed_) {
+    if (sample.first > now - 0.5 * elapsed) break;
+    since = sample;
+  }
+  const double advanced = done - since.second;
+  const double remaining = advanced > 0 ? (now - since.first) * (total_ - done) / advanced : NAN;
   return fmt::format("{}: {:.1f}% ({:.4g} of {:.4g}), elapsed {}, ETA {}", label_, 100.0 * fraction, done,
                      total_, format_duration(elapsed), format_duration(remaining));
 }
 
-bool Progress::update(double done) {
+bool Progress::update(double done, const std::function<std::string()>& detail) {
   const double now = clock_();
   if (now - last_print_ < interval_) return false;
   last_print_ = now;
-  logger_->info("{}", line(done));
+  if (detail)
+    logger_->info("{}, {}", line(done), detail());
+  else
+    logger_->info("{}", line(done));
+  printed_.emplace_back(now, done);
   return true;
 }
 

@@ -12,6 +12,8 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace aniso {
 
@@ -23,7 +25,9 @@ Logger make_logger(const std::string& program, const mpi::Comm& comm, const std:
 /// A logger that writes nothing (for tests and library calls that want silence).
 Logger make_silent_logger();
 
-/// Throttled progress reporting with an estimate of the time remaining.
+/// Throttled progress reporting with an estimate of the time remaining. The estimate takes the
+/// pace of the more recent half of the run so far: a stage that slows down near its end (a
+/// compaction waiting to seize) does not keep promising the early pace.
 class Progress {
 public:
   using Clock = std::function<double()>; ///< seconds, monotonic
@@ -35,8 +39,8 @@ public:
            double from = 0.0);
 
   /// Records progress `done` (same unit as total) and prints if the interval has passed. Returns true if
-  /// printed.
-  bool update(double done);
+  /// printed. `detail`, called only when printing, adds what the stage is doing to the line.
+  bool update(double done, const std::function<std::string()>& detail = {});
   /// The line that update() would print for `done` now (for tests).
   [[nodiscard]] std::string line(double done) const;
 
@@ -49,6 +53,7 @@ private:
   Clock clock_;
   double start_;
   double last_print_;
+  std::vector<std::pair<double, double>> printed_; ///< (time, done) at the start and at each print
 };
 
 /// "1 h 02 min", "3 min 05 s", "12 s": short human durations for progress lines.

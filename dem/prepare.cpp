@@ -60,7 +60,14 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
     const double p = mean_stress_compression_positive(simulation.stress());
     const double energy_ratio =
         simulation.equilibrium().kinetic_energy / (std::max(p, 1.0) * simulation.cell().volume());
-    progress.update(std::min(std::log(start_volume / simulation.cell().volume()), strain_to_seize));
+    // Near the end the compaction alternates between compacting and holding the cell while the
+    // seize test waits for the forces to balance; the line says which, and how far the test is.
+    progress.update(std::min(std::log(start_volume / simulation.cell().volume()), strain_to_seize), [&] {
+      return fmt::format(
+          "p {:.3g} kPa (seized from {:.3g}), {}, unbalanced-force ratio {:.2g} (seized below {:.2g})",
+          p / 1e3, prepare.seize_stress / 1e3, holding ? "cell held" : "compacting",
+          simulation.equilibrium().unbalanced_force_ratio, prepare.seize_force_ratio);
+    });
     const bool above = p >= prepare.seize_stress;
     // Only a held cell tells a load-bearing network from one that the compaction itself
     // loads: the viscous contact forces of a moving cell carry p of their own.

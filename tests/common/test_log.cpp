@@ -28,6 +28,42 @@ TEST(Progress, EstimatesFromWhereThisRunStarted) {
   EXPECT_EQ(progress.line(0.3), "load: 50.0% (0.3 of 0.6), elapsed 20 s, ETA ?"); // no pace yet
 }
 
+// A stage that slows down near its end: the estimate follows the recent pace (issue 24: a paper-size
+// compaction said "ETA 8 s" for 20 minutes at 98% while it crept towards seizing).
+TEST(Progress, EstimatesFromTheRecentPace) {
+  double now = 0.0;
+  aniso::Progress progress(aniso::make_silent_logger(), "compaction", 1.0, 10.0, [&now] { return now; });
+  double done = 0.0;
+  for (int k = 1; k <= 6; ++k) { // 0.9 in the first minute
+    now = 10.0 * k;
+    done = 0.15 * k;
+    EXPECT_TRUE(progress.update(done));
+  }
+  for (int k = 7; k <= 60; ++k) { // then 0.001 per 10 s
+    now = 10.0 * k;
+    done += 0.001;
+    EXPECT_TRUE(progress.update(done));
+  }
+  // 10 min elapsed: the last 5 min advanced 0.030, so the 0.046 left take about 7.7 min (the pace
+  // of the whole run would say 40 s).
+  EXPECT_EQ(progress.line(done), "compaction: 95.4% (0.954 of 1), elapsed 10 min 00 s, ETA 7 min 40 s");
+}
+
+TEST(Progress, PrintsTheDetailOnlyWhenItPrints) {
+  double now = 0.0;
+  int asked = 0;
+  aniso::Progress progress(aniso::make_silent_logger(), "x", 1.0, 10.0, [&now] { return now; });
+  const auto detail = [&asked] {
+    ++asked;
+    return std::string("cell held");
+  };
+  now = 5.0;
+  EXPECT_FALSE(progress.update(0.1, detail));
+  now = 10.0;
+  EXPECT_TRUE(progress.update(0.2, detail));
+  EXPECT_EQ(asked, 1);
+}
+
 TEST(Progress, DurationFormat) {
   EXPECT_EQ(aniso::format_duration(12.4), "12 s");
   EXPECT_EQ(aniso::format_duration(185), "3 min 05 s");
