@@ -20,6 +20,30 @@ std::vector<std::vector<char>> exchange_bytes(const mpi::Comm& comm,
 /// Every rank's buffer, in rank order, on every rank (collective).
 std::vector<std::vector<char>> all_gather_bytes(const mpi::Comm& comm, const std::vector<char>& mine);
 
+/// A repeated exchange of doubles whose sizes stay fixed between set-ups: the per-step refresh
+/// of ghost particles. exchange_bytes costs an all-to-all of the counts (a synchronisation of
+/// every rank), a fresh zero-filled receive buffer and three copies per call; here the counts
+/// are given once, the buffers persist, callers write and read them in place, and only the
+/// ranks that share data talk (point to point).
+class FixedExchange {
+public:
+  /// The number of doubles this rank sends to and receives from each rank; they must mirror the
+  /// partners' (the caller learnt them in an exchange_bytes set-up). Nothing goes to this rank.
+  void resize(const mpi::Comm& comm, const std::vector<std::size_t>& send_counts,
+              const std::vector<std::size_t>& receive_counts);
+  /// Where to write what goes to `rank` before exchange().
+  [[nodiscard]] std::span<double> outgoing(int rank);
+  /// Sends every outgoing buffer and receives every incoming one (collective among partners).
+  void exchange(const mpi::Comm& comm);
+  /// What `rank` sent, after exchange().
+  [[nodiscard]] std::span<const double> incoming(int rank) const;
+
+private:
+  std::vector<std::size_t> send_offsets_, receive_offsets_; ///< n_ranks + 1 each
+  std::vector<double> send_, receive_;
+  std::vector<MPI_Request> requests_;
+};
+
 /// Appends trivially copyable values to a byte buffer.
 class ByteWriter {
 public:

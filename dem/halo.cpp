@@ -29,6 +29,27 @@ Quat get_quat(ByteReader& in) {
   return {w, x, y, z};
 }
 
+// What changes from step to step: position, orientation, velocity and angular velocity.
+constexpr std::size_t ghost_state_size = 3 + 4 + 3 + 3;
+
+double* put_ghost_state(double* out, const Particles& p, std::size_t k) {
+  const Vec3& x = p.position[k];
+  const Quat& q = p.orientation[k];
+  const Vec3& v = p.velocity[k];
+  const Vec3& w = p.angular_velocity[k];
+  for (const double value :
+       {x[0], x[1], x[2], q.w(), q.x(), q.y(), q.z(), v[0], v[1], v[2], w[0], w[1], w[2]})
+    *out++ = value;
+  return out;
+}
+
+void get_ghost_state(const double* in, Particles& p, std::size_t k) {
+  p.position[k] = Vec3(in[0], in[1], in[2]);
+  p.orientation[k] = Quat(in[3], in[4], in[5], in[6]);
+  p.velocity[k] = Vec3(in[7], in[8], in[9]);
+  p.angular_velocity[k] = Vec3(in[10], in[11], in[12]);
+}
+
 // Everything that defines a particle (forces are recomputed after every exchange).
 void pack_particle(ByteWriter& out, const Particles& p, std::size_t k) {
   out.put(p.id[k]);
@@ -141,52 +162,48 @@ std::vector<HistoryRecord> Halo::migrate(Particles& particles, const PeriodicCel
 void Halo::exchange_ghosts(Particles& particles, const PeriodicCell& cell, const Domain& domain) {
   const mpi::Comm& comm = domain.comm();
   particles.truncate(particles.n_owned);
-  send_lists_.assign(static_cast<std::size_t>(comm.size()), {});
+  const auto n_ranks = static_cast<std::size_t>(comm.size());
+  send_lists_.assign(n_ranks, {});
   if (comm.size() == 1) return;
   for (std::uint32_t k = 0; k < particles.n_owned; ++k) {
     for (const int r : domain.ghost_ranks(domain.bin_of(cell, particles.position[k]))) {
       send_lists_[static_cast<std::size_t>(r)].push_back(k);
     }
   }
-  std::vector<std::vector<char>> outgoing(static_cast<std::size_t>(comm.size()));
+  std::vector<std::vector<char>> outgoing(n_ranks);
   for (std::size_t r = 0; r < outgoing.size(); ++r) {
     ByteWriter out(outgoing[r]);
     for (const std::uint32_t k : send_lists_[r])
       pack_particle(out, particles, k);
   }
   const auto incoming = exchange_bytes(comm, outgoing);
-  for (const auto& buffer : incoming) {
-    ByteReader in(buffer);
+  std::vector<std::size_t> send_counts(n_ranks), receive_counts(n_ranks);
+  for (std::size_t r = 0; r < n_ranks; ++r) {
+    const std::size_t before = particles.size();
+    ByteReader in(incoming[r]);
     while (!in.done())
       unpack_particle(in, particles);
+    receive_counts[r] = (particles.size() - before) * ghost_state_size;
+    send_counts[r] = send_lists_[r].size() * ghost_state_size;
   }
+  refresh_.resize(comm, send_counts, receive_counts);
 }
 
 void Halo::update_ghosts(Particles& particles, const Domain& domain) {
   const mpi::Comm& comm = domain.comm();
   if (comm.size() == 1) return;
-  std::vector<std::vector<char>> outgoing(static_cast<std::size_t>(comm.size()));
-  for (std::size_t r = 0; r < outgoing.size(); ++r) {
-    ByteWriter out(outgoing[r]);
-    for (const std::uint32_t k : send_lists_[r]) {
-      put_vec3(out, particles.position[k]);
-      put_quat(out, particles.orientation[k]);
-      put_vec3(out, particles.velocity[k]);
-      put_vec3(out, particles.angular_velocity[k]);
-    }
+  for (int r = 0; r < comm.size(); ++r) {
+    double* out = refresh_.outgoing(r).data();
+    for (const std::uint32_t k : send_lists_[static_cast<std::size_t>(r)])
+      out = put_ghost_state(out, particles, k);
   }
-  const auto incoming = exchange_bytes(comm, outgoing);
+  refresh_.exchange(comm);
   // Ghosts sit after the owned particles in the order exchange_ghosts appended them: by source rank.
   std::size_t ghost = particles.n_owned;
-  for (const auto& buffer : incoming) {
-    ByteReader in(buffer);
-    while (!in.done()) {
-      particles.position[ghost] = get_vec3(in);
-      particles.orientation[ghost] = get_quat(in);
-      particles.velocity[ghost] = get_vec3(in);
-      particles.angular_velocity[ghost] = get_vec3(in);
-      ++ghost;
-    }
+  for (int r = 0; r < comm.size(); ++r) {
+    const std::span<const double> in = refresh_.incoming(r);
+    for (std::size_t at = 0; at < in.size(); at += ghost_state_size)
+      get_ghost_state(in.data() + at, particles, ghost++);
   }
   check_invariant(ghost == particles.size(), "every ghost refreshed");
 }

@@ -4,6 +4,7 @@
 // contacts; ghost copies of the particles next to a rank's bins; and the
 // per-step refresh of those ghosts. With one rank all three do nothing.
 
+#include "common/exchange.hpp"
 #include "dem/domain.hpp"
 #include "dem/neighbors.hpp"
 #include "dem/particles.hpp"
@@ -28,6 +29,7 @@ public:
 
 private:
   std::vector<std::vector<std::uint32_t>> send_lists_; ///< owned indices sent to each rank
+  FixedExchange refresh_;                              ///< the per-step refresh, sized by exchange_ghosts
 };
 
 } // namespace aniso::dem
