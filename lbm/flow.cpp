@@ -170,9 +170,9 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   const auto start = std::chrono::steady_clock::now();
   const TrtRates rates = make_trt_rates(s.tau, s.magic);
   const std::array<Real, 3> force{Real(s.force[0]), Real(s.force[1]), Real(s.force[2])};
-  // Rest state, delta rho = 0, u = 0: all shifted populations are zero.
-  std::vector<Real> a(topology.array_size(), Real(0));
-  std::vector<Real> b(topology.array_size(), Real(0));
+  // Rest state, delta rho = 0, u = 0: all shifted populations are zero, so the array is in the layout of
+  // either kind of step. One array, updated in place (lbm/topology.hpp).
+  std::vector<Real> f(topology.array_size(), Real(0));
   // Each check measures two consecutive steps (moments_before, then moments) and uses their mean:
   // at a node where every link with a component along the force ends in solid, the force's
   // momentum bounces back every step and never damps (+-F/2 in turn), so one step alone would
@@ -196,9 +196,12 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   double peak = 0; // largest |<j>| of the run's checks
   std::int64_t peak_step = 0;
   for (std::int64_t step = 1;; ++step) {
-    {
+    // Step 1 is even: it reads each node's own slots. Odd steps stream across rank boundaries through
+    // the ghost slots: filled before, given back after.
+    const Parity parity = step % 2 == 1 ? Parity::even : Parity::odd;
+    if (parity == Parity::odd) {
       ScopedEvent event(events, events.halo);
-      halo.exchange(a);
+      halo.fill(f);
     }
     const bool check = step % s.check_interval == 0;
     const bool before_check = (step + 1) % s.check_interval == 0;
@@ -206,14 +209,17 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
     {
       ScopedEvent event(events, events.stream_collide);
       if (measure)
-        stream_collide<Real, true>(a.data(), b.data(), topology.source.data(), topology.n_fluid, force,
+        stream_collide<Real, true>(parity, f.data(), topology.slot.data(), topology.n_fluid, force,
                                    Real(rates.omega_plus), Real(rates.omega_minus),
                                    check ? moments.data() : moments_before.data());
       else
-        stream_collide<Real, false>(a.data(), b.data(), topology.source.data(), topology.n_fluid, force,
+        stream_collide<Real, false>(parity, f.data(), topology.slot.data(), topology.n_fluid, force,
                                     Real(rates.omega_plus), Real(rates.omega_minus), nullptr);
     }
-    std::swap(a, b);
+    if (parity == Parity::odd) {
+      ScopedEvent event(events, events.halo);
+      halo.give_back(f);
+    }
     if (!measure) continue;
     ScopedEvent event(events, events.monitor);
     const Totals totals = reduce_moments(check ? moments : moments_before, comm);

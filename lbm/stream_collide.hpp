@@ -1,9 +1,10 @@
 #pragma once
-// One lattice Boltzmann step over a rank's fluid nodes: pull each node's 19
-// populations through the streaming table (boundaries folded in, see
-// topology.hpp), collide them with TRT and store them in the other array.
-// With `Measure`, also records each node's density deviation and momentum
-// for the convergence and divergence checks. Stateless and MPI-free.
+// One lattice Boltzmann step over a rank's fluid nodes in the in-place "AA"
+// pattern (Bailey, Myre, Walsh, Lilja & Saar 2009; lbm/topology.hpp): the two
+// kinds of step alternate on a single population array, and collide the 19
+// values each node receives with TRT. With `Measure`, also records each node's
+// density deviation and momentum for the convergence and divergence checks.
+// Stateless and MPI-free.
 
 #include "lbm/d3q19.hpp"
 #include "lbm/trt.hpp"
@@ -21,23 +22,11 @@ struct MomentsRecord {
 /// Nodes collided together (SIMD lanes); the remainder goes through a block of one.
 inline constexpr int block_width = 8;
 
+/// Which of the two alternating steps.
+enum class Parity { even, odd };
+
 template <class Real, int W, bool Measure>
-inline void stream_collide_block(const Real* __restrict in, Real* __restrict out,
-                                 const std::uint32_t* __restrict source, std::size_t n, std::size_t first,
-                                 const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
-                                 MomentsRecord* __restrict moments) {
-  NodeBlock<Real, W> block;
-  for (int l = 0; l < W; ++l)
-    block.g[0][l] = in[first + static_cast<std::size_t>(l)];
-  for (std::size_t i = 1; i < d3q19::q; ++i) {
-    const std::uint32_t* row = source + (i - 1) * n + first;
-    for (int l = 0; l < W; ++l)
-      block.g[i][l] = in[row[l]];
-  }
-  collide_trt<Real, W>(block, force, omega_plus, omega_minus);
-  for (std::size_t i = 0; i < d3q19::q; ++i)
-    for (int l = 0; l < W; ++l)
-      out[i * n + first + static_cast<std::size_t>(l)] = block.g[i][l];
+inline void record_moments(const NodeBlock<Real, W>& block, std::size_t first, MomentsRecord* moments) {
   if constexpr (Measure) {
     for (int l = 0; l < W; ++l)
       moments[first + static_cast<std::size_t>(l)] = {
@@ -46,17 +35,67 @@ inline void stream_collide_block(const Real* __restrict in, Real* __restrict out
   }
 }
 
+/// Even step of W nodes: each node's own slots in, post-collision population i into its slot opp(i).
+template <class Real, int W, bool Measure>
+inline void collide_even_block(Real* f, std::size_t n, std::size_t first, const std::array<Real, 3>& force,
+                               Real omega_plus, Real omega_minus, MomentsRecord* moments) {
+  NodeBlock<Real, W> block;
+  for (std::size_t i = 0; i < d3q19::q; ++i)
+    for (int l = 0; l < W; ++l)
+      block.g[i][l] = f[i * n + first + static_cast<std::size_t>(l)];
+  collide_trt<Real, W>(block, force, omega_plus, omega_minus);
+  for (std::size_t i = 0; i < d3q19::q; ++i) {
+    const auto slot = static_cast<std::size_t>(d3q19::opposite(static_cast<int>(i))) * n + first;
+    for (int l = 0; l < W; ++l)
+      f[slot + static_cast<std::size_t>(l)] = block.g[i][l];
+  }
+  record_moments<Real, W, Measure>(block, first, moments);
+}
+
+/// Odd step of W nodes: population i from its table slot, post-collision population opp(i) back into it.
+template <class Real, int W, bool Measure>
+inline void collide_odd_block(Real* f, const std::uint32_t* __restrict slot, std::size_t n, std::size_t first,
+                              const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
+                              MomentsRecord* moments) {
+  NodeBlock<Real, W> block;
+  for (int l = 0; l < W; ++l)
+    block.g[0][l] = f[first + static_cast<std::size_t>(l)];
+  for (std::size_t i = 1; i < d3q19::q; ++i) {
+    const std::uint32_t* row = slot + (i - 1) * n + first;
+    for (int l = 0; l < W; ++l)
+      block.g[i][l] = f[row[l]];
+  }
+  collide_trt<Real, W>(block, force, omega_plus, omega_minus);
+  for (int l = 0; l < W; ++l)
+    f[first + static_cast<std::size_t>(l)] = block.g[0][l];
+  for (std::size_t i = 1; i < d3q19::q; ++i) {
+    const std::uint32_t* row =
+        slot + static_cast<std::size_t>(d3q19::opposite(static_cast<int>(i)) - 1) * n + first;
+    for (int l = 0; l < W; ++l)
+      f[row[l]] = block.g[i][l];
+  }
+  record_moments<Real, W, Measure>(block, first, moments);
+}
+
+/// One step over all `n_fluid` nodes of the population array `f` (odd steps need the ghost slots filled).
 template <class Real, bool Measure>
-void stream_collide(const Real* __restrict in, Real* __restrict out, const std::uint32_t* __restrict source,
-                    std::int64_t n_fluid, const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
-                    MomentsRecord* __restrict moments) {
+void stream_collide(Parity parity, Real* f, const std::uint32_t* slot, std::int64_t n_fluid,
+                    const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
+                    MomentsRecord* moments) {
   const auto n = static_cast<std::size_t>(n_fluid);
   std::size_t node = 0;
-  for (; node + block_width <= n; node += block_width)
-    stream_collide_block<Real, block_width, Measure>(in, out, source, n, node, force, omega_plus, omega_minus,
-                                                     moments);
-  for (; node < n; ++node)
-    stream_collide_block<Real, 1, Measure>(in, out, source, n, node, force, omega_plus, omega_minus, moments);
+  if (parity == Parity::even) {
+    for (; node + block_width <= n; node += block_width)
+      collide_even_block<Real, block_width, Measure>(f, n, node, force, omega_plus, omega_minus, moments);
+    for (; node < n; ++node)
+      collide_even_block<Real, 1, Measure>(f, n, node, force, omega_plus, omega_minus, moments);
+  } else {
+    for (; node + block_width <= n; node += block_width)
+      collide_odd_block<Real, block_width, Measure>(f, slot, n, node, force, omega_plus, omega_minus,
+                                                    moments);
+    for (; node < n; ++node)
+      collide_odd_block<Real, 1, Measure>(f, slot, n, node, force, omega_plus, omega_minus, moments);
+  }
 }
 
 } // namespace aniso::lbm

@@ -17,7 +17,7 @@ using d3q19::q;
 /// A population a node pulls from another rank, and the table entry waiting for it.
 struct Request {
   std::int64_t key;        ///< global voxel index * 19 + population: sorts by voxel, then population
-  std::size_t table_entry; ///< index into Topology::source to patch once the ghost slot is known
+  std::size_t table_entry; ///< index into Topology::slot to patch once the ghost slot is known
 };
 
 struct Geometry {
@@ -114,27 +114,29 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
   require_input(topology.n_fluid_global > 0,
                 "the image has no void voxel: there is no pore space to flow through");
 
-  // The streaming table (18 indices), two population arrays (19 values each, double at most) and
-  // the two moments records (lbm/flow.cpp) per fluid voxel, before any of them is allocated.
-  constexpr double bytes_per_fluid_voxel = 18 * 4 + 2 * 19 * 8 + 2 * 4 * 8;
+  // The streaming table (18 indices), the population array (19 values, double at most) and the two
+  // moments records (lbm/flow.cpp) per fluid voxel, before any of them is allocated.
+  constexpr double bytes_per_fluid_voxel = 18 * 4 + 19 * 8 + 2 * 4 * 8;
   require_memory(bytes_per_fluid_voxel * static_cast<double>(topology.n_fluid),
                  fmt::format("lbm: {} fluid voxels on this rank", topology.n_fluid),
                  "use a coarser image or more ranks");
 
-  // Streaming table; remote sources become requests to their owners.
+  // Streaming table: population i streaming from population j of voxel y reads and writes the slot
+  // (y, opp(j)) in odd steps (topology.hpp). Remote slots become requests to their owners.
   const auto n_fluid = static_cast<std::size_t>(topology.n_fluid);
-  topology.source.resize(static_cast<std::size_t>(q - 1) * n_fluid);
+  topology.slot.resize(static_cast<std::size_t>(q - 1) * n_fluid);
   std::map<int, std::vector<Request>> requests;
   for (std::size_t node = 0; node < n_fluid; ++node)
     for (int i = 1; i < q; ++i) {
       const Upstream up = find_upstream(cells[node], i, faces, geometry);
+      const int population = d3q19::opposite(up.population);
       const std::size_t entry = static_cast<std::size_t>(i - 1) * n_fluid + node;
       if (partition.is_local(up.cell)) {
-        topology.source[entry] =
-            static_cast<std::uint32_t>(static_cast<std::size_t>(up.population) * n_fluid +
+        topology.slot[entry] =
+            static_cast<std::uint32_t>(static_cast<std::size_t>(population) * n_fluid +
                                        static_cast<std::size_t>(local_fluid[box_index(up.cell)]));
       } else {
-        requests[partition.owner(up.cell)].push_back({geometry.linear(up.cell) * q + up.population, entry});
+        requests[partition.owner(up.cell)].push_back({geometry.linear(up.cell) * q + population, entry});
       }
     }
 
@@ -154,7 +156,7 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
     outgoing_displacements[static_cast<std::size_t>(peer)] = static_cast<int>(outgoing.size());
     send_counts[static_cast<std::size_t>(peer)] = static_cast<int>(list.size());
     for (const Request& request : list) {
-      topology.source[request.table_entry] = static_cast<std::uint32_t>(ghost_base + next_slot++);
+      topology.slot[request.table_entry] = static_cast<std::uint32_t>(ghost_base + next_slot++);
       outgoing.push_back(request.key);
     }
     topology.peers.push_back(std::move(halo));
