@@ -22,8 +22,15 @@ LbmConfig read_lbm_config(config::Reader& reader) {
                               "floating-point type of the populations and the collision") == "float"
                     ? Precision::float32
                     : Precision::float64;
-  f.tau = reader.real("lbm.tau", 1.0, "1", Range::open_closed(0.5, 10.0),
-                      "TRT relaxation time of the symmetric moments; viscosity nu = (tau - 1/2)/3");
+  f.tau =
+      reader.real("lbm.tau", 0.0, "1", Range::closed(0.0, 10.0),
+                  "TRT relaxation time of the symmetric moments, in (1/2, 10]; viscosity nu = (tau - 1/2)/3; "
+                  "0: chosen from the image for the fewest steps (docs/methods/lbm.md)");
+  require_input(
+      f.tau == 0.0 || f.tau > 0.5,
+      fmt::format("lbm.tau = {} must be above 1/2 (the viscosity (tau - 1/2)/3 must be positive), or 0 "
+                  "for the automatic choice",
+                  f.tau));
   f.magic = reader.real("lbm.magic", 3.0 / 16.0, "1", Range::positive(),
                         "TRT magic parameter Lambda; 3/16 puts halfway bounce-back walls exactly midway");
   p.body_force = reader.real("lbm.body_force", 0.0, "lattice", Range::closed(0.0, 1e-1),

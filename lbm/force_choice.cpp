@@ -7,7 +7,15 @@
 
 namespace aniso::lbm {
 
-double kozeny_carman_permeability(const h5::VoxelImage& image) {
+namespace {
+
+/// Porosity and specific surface [1/voxel] (voxel faces / 1.5, see kozeny_carman_permeability).
+struct PoreSpace {
+  double porosity = 0;
+  double surface = 0;
+};
+
+PoreSpace measure_pore_space(const h5::VoxelImage& image) {
   const std::array<std::size_t, 3> n = image.shape;
   std::int64_t void_voxels = 0, faces = 0;
   for (std::size_t k = 0; k < n[2]; ++k)
@@ -20,11 +28,36 @@ double kozeny_carman_permeability(const h5::VoxelImage& image) {
         faces += here != image.phase[image.index(i, (j + 1) % n[1], k)] ? 1 : 0;
         faces += here != image.phase[image.index(i, j, (k + 1) % n[2])] ? 1 : 0;
       }
-  if (faces == 0) return std::numeric_limits<double>::infinity();
   const auto volume = static_cast<double>(image.size());
-  const double porosity = static_cast<double>(void_voxels) / volume;
-  const double surface = static_cast<double>(faces) / 1.5 / volume;
-  return porosity * porosity * porosity / (5.0 * surface * surface);
+  return {static_cast<double>(void_voxels) / volume, static_cast<double>(faces) / 1.5 / volume};
+}
+
+} // namespace
+
+double kozeny_carman_permeability(const h5::VoxelImage& image) {
+  const PoreSpace pores = measure_pore_space(image);
+  if (pores.surface == 0) return std::numeric_limits<double>::infinity();
+  return pores.porosity * pores.porosity * pores.porosity / (5.0 * pores.surface * pores.surface);
+}
+
+double hydraulic_diameter(const h5::VoxelImage& image) {
+  const PoreSpace pores = measure_pore_space(image);
+  if (pores.surface == 0) return std::numeric_limits<double>::infinity();
+  return 4.0 * pores.porosity / pores.surface;
+}
+
+double resolve_tau(const h5::VoxelImage& image, const PermeabilitySettings& settings, const Logger& logger) {
+  if (settings.flow.tau > 0) return settings.flow.tau;
+  const double length = std::cbrt(static_cast<double>(image.size()));
+  // A pore cannot be wider than the cell it repeats in (dilute images: d_h exceeds L).
+  const double pore = std::min(hydraulic_diameter(image), length);
+  const double nu = kTauBalance * pore * pore / length;
+  const double tau = std::clamp(0.5 + 3.0 * nu, kAutoTauMin, kAutoTauMax);
+  logger->info(
+      "lbm.tau = 0 (automatic): pore hydraulic diameter {:.3g} voxels in a cell of {:.3g} voxels; tau "
+      "{:.3g} (balances viscous settling in the pores against pressure settling over the cell)",
+      pore, length, tau);
+  return tau;
 }
 
 double resolve_body_force(const h5::VoxelImage& image, const PermeabilitySettings& settings,

@@ -111,12 +111,15 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
                          static_cast<double>(image.size()));
   const std::string path = lbm::result_path(config.output_dir, "permeability", input);
   logger->info("configuration is valid: method {}, tau {}, {} precision; result goes to {}",
-               lbm::to_string(config.permeability.method), config.permeability.flow.tau,
+               lbm::to_string(config.permeability.method),
+               config.permeability.flow.tau > 0 ? fmt::format("{}", config.permeability.flow.tau)
+                                                : "automatic",
                config.permeability.flow.precision == lbm::Precision::float32 ? "single" : "double", path);
   if (options.dry_run) return 0;
 
-  // The force is resolved once per image, so that direction files of one image agree on it.
+  // tau and the force are resolved once per image, so that direction files of one image agree on them.
   lbm::PermeabilitySettings settings = config.permeability;
+  settings.flow.tau = lbm::resolve_tau(image, settings, logger);
   settings.body_force = lbm::resolve_body_force(image, settings, logger);
   const lbm::PetscSession petsc(config.petsc_options);
   const auto provenance =
