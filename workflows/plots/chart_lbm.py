@@ -12,7 +12,6 @@ already listed there are reused (delete the csv to redo them).
 
 usage: chart_lbm.py BUILD_FOLDER WORK_FOLDER OUTPUT_FOLDER
 """
-import csv
 import math
 import os
 import subprocess
@@ -20,6 +19,7 @@ import sys
 
 import h5py
 import matplotlib
+from run_table import RunTable
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -63,25 +63,17 @@ def main():
     build, work, output = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
     os.makedirs(output, exist_ok=True)
-    table = os.path.join(output, "lbm_resolution_tolerance.csv")
-    rows = []
-    if os.path.exists(table):
-        with open(table) as f:
-            rows = list(csv.DictReader(f))
+    table = RunTable(os.path.join(output, "lbm_resolution_tolerance.csv"), FIELDS)
 
     def get(kind, diameter, precision, tolerance):
-        for row in rows:
-            # The same run serves both panels (kind only says which panel asked first).
-            if (int(row["diameter"]), row["precision"], float(row["tolerance"])) == (diameter, precision, tolerance):
-                return row
+        # The same run serves both panels (kind only says which panel asked first).
+        row = table.find(lambda r: (int(r["diameter"]), r["precision"], float(r["tolerance"]))
+                         == (diameter, precision, tolerance))
+        if row:
+            return row
         row = {"kind": kind, "diameter": diameter, "precision": precision, "tolerance": tolerance}
         row.update(run(build, work, diameter, precision, tolerance))
-        rows.append({k: str(v) for k, v in row.items()})
-        with open(table, "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=FIELDS)
-            writer.writeheader()
-            writer.writerows(rows)
-        return rows[-1]
+        return table.add(row)
 
     fig, (ax_res, ax_tol) = plt.subplots(1, 2, figsize=(11, 4.3))
     for precision, marker, diameters in (("double", "o", DIAMETERS), ("float", "s", FLOAT_DIAMETERS)):

@@ -12,7 +12,6 @@ reused (delete the csv to redo them).
 
 usage: [RANKS=N] chart_lbm_tau.py BUILD_FOLDER WORK_FOLDER OUTPUT_FOLDER
 """
-import csv
 import math
 import os
 import subprocess
@@ -20,6 +19,7 @@ import sys
 
 import h5py
 import matplotlib
+from run_table import RunTable
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -82,24 +82,15 @@ def main():
     build, work, output = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
     os.makedirs(output, exist_ok=True)
-    table = os.path.join(output, "lbm_tau.csv")
-    rows = []
-    if os.path.exists(table):
-        with open(table) as f:
-            rows = list(csv.DictReader(f))
+    table = RunTable(os.path.join(output, "lbm_tau.csv"), FIELDS)
 
     def get(case, tau, tolerance):
-        for row in rows:
-            if (row["case"], float(row["tau"]), float(row["tolerance"])) == (case, tau, tolerance):
-                return row
+        row = table.find(lambda r: (r["case"], float(r["tau"]), float(r["tolerance"])) == (case, tau, tolerance))
+        if row:
+            return row
         row = {"case": case, "tau": tau, "tolerance": tolerance}
         row.update(run(build, work, case, tau, tolerance))
-        rows.append({k: str(v) for k, v in row.items()})
-        with open(table, "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=FIELDS)
-            writer.writeheader()
-            writer.writerows(rows)
-        return rows[-1]
+        return table.add(row)
 
     fig, (ax_steps, ax_error) = plt.subplots(1, 2, figsize=(12, 4.8))
     for case, (label, _, taus, (reference_tau, reference_tolerance)) in CASES.items():

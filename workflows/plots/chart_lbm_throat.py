@@ -11,7 +11,6 @@ reused (delete the csv to redo them).
 
 usage: chart_lbm_throat.py BUILD_FOLDER WORK_FOLDER OUTPUT_FOLDER
 """
-import csv
 import math
 import os
 import subprocess
@@ -19,6 +18,7 @@ import sys
 
 import h5py
 import matplotlib
+from run_table import RunTable
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -56,21 +56,14 @@ def main():
     build, work, output = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
     os.makedirs(output, exist_ok=True)
-    table = os.path.join(output, "lbm_throat_error.csv")
-    rows = []
-    if os.path.exists(table):
-        with open(table) as f:
-            rows = list(csv.DictReader(f))
+    table = RunTable(os.path.join(output, "lbm_throat_error.csv"), FIELDS)
+    rows = table.rows
     for phi in ZICK_HOMSY:
         for side in SIDES:
-            if any(float(r["phi"]) == phi and int(r["side"]) == side for r in rows):
+            if table.find(lambda r: float(r["phi"]) == phi and int(r["side"]) == side):
                 continue
             row = {"phi": phi, "side": side, **run(build, work, phi, side)}
-            rows.append({k: str(v) for k, v in row.items()})
-            with open(table, "w", newline="") as f:
-                writer = csv.DictWriter(f, fieldnames=FIELDS)
-                writer.writeheader()
-                writer.writerows(rows)
+            table.add(row)
             print(f"phi {phi} side {side}: throat {row['throat_width']:.1f} voxels, "
                   f"error {100 * row['relative_error']:+.2f}%", flush=True)
 
