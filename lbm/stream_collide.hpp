@@ -54,25 +54,26 @@ inline void collide_even_block(Real* f, std::size_t n, std::size_t first, const 
 
 /// Odd step of W nodes: population i from its table slot, post-collision population opp(i) back into it.
 template <class Real, int W, bool Measure>
-inline void collide_odd_block(Real* f, const std::uint32_t* __restrict slot, std::size_t n, std::size_t first,
+inline void collide_odd_block(Real* f, const std::uint32_t* __restrict slot, std::size_t first,
                               const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
                               MomentsRecord* moments) {
   NodeBlock<Real, W> block;
   for (int l = 0; l < W; ++l)
     block.g[0][l] = f[first + static_cast<std::size_t>(l)];
-  for (std::size_t i = 1; i < d3q19::q; ++i) {
-    const std::uint32_t* row = slot + (i - 1) * n + first;
+  // The table is node-major (18 entries per node): one memory stream, where population-major rows
+  // made 18 beside the 19 of the populations (measured 1.2x; blocking the populations the same way,
+  // 8 nodes x 19 populations together, was 1.3x slower: each direction's gather became a strided stream).
+  const std::uint32_t* table = slot + first * (d3q19::q - 1);
+  for (std::size_t i = 1; i < d3q19::q; ++i)
     for (int l = 0; l < W; ++l)
-      block.g[i][l] = f[row[l]];
-  }
+      block.g[i][l] = f[table[static_cast<std::size_t>(l) * (d3q19::q - 1) + i - 1]];
   collide_trt<Real, W>(block, force, omega_plus, omega_minus);
   for (int l = 0; l < W; ++l)
     f[first + static_cast<std::size_t>(l)] = block.g[0][l];
   for (std::size_t i = 1; i < d3q19::q; ++i) {
-    const std::uint32_t* row =
-        slot + static_cast<std::size_t>(d3q19::opposite(static_cast<int>(i)) - 1) * n + first;
+    const auto entry = static_cast<std::size_t>(d3q19::opposite(static_cast<int>(i)) - 1);
     for (int l = 0; l < W; ++l)
-      f[row[l]] = block.g[i][l];
+      f[table[static_cast<std::size_t>(l) * (d3q19::q - 1) + entry]] = block.g[i][l];
   }
   record_moments<Real, W, Measure>(block, first, moments);
 }
@@ -91,10 +92,9 @@ void stream_collide(Parity parity, Real* f, const std::uint32_t* slot, std::int6
       collide_even_block<Real, 1, Measure>(f, n, node, force, omega_plus, omega_minus, moments);
   } else {
     for (; node + block_width <= n; node += block_width)
-      collide_odd_block<Real, block_width, Measure>(f, slot, n, node, force, omega_plus, omega_minus,
-                                                    moments);
+      collide_odd_block<Real, block_width, Measure>(f, slot, node, force, omega_plus, omega_minus, moments);
     for (; node < n; ++node)
-      collide_odd_block<Real, 1, Measure>(f, slot, n, node, force, omega_plus, omega_minus, moments);
+      collide_odd_block<Real, 1, Measure>(f, slot, node, force, omega_plus, omega_minus, moments);
   }
 }
 

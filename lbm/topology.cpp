@@ -130,7 +130,7 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
     for (int i = 1; i < q; ++i) {
       const Upstream up = find_upstream(cells[node], i, faces, geometry);
       const int population = d3q19::opposite(up.population);
-      const std::size_t entry = static_cast<std::size_t>(i - 1) * n_fluid + node;
+      const std::size_t entry = node * (q - 1) + static_cast<std::size_t>(i - 1);
       if (partition.is_local(up.cell)) {
         topology.slot[entry] =
             static_cast<std::uint32_t>(static_cast<std::size_t>(population) * n_fluid +

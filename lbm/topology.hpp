@@ -60,7 +60,7 @@ struct Topology {
   std::int64_t n_voxels_global = 0;     ///< all voxels of the image
   std::int64_t n_ghost = 0;             ///< ghost slots (filled before, returned after each odd step)
   std::vector<std::int64_t> fluid_cell; ///< global voxel index (x1 fastest) of each local fluid node
-  std::vector<std::uint32_t> slot;      ///< [(i - 1) * n_fluid + n]: odd-step slot of population i of node n
+  std::vector<std::uint32_t> slot;      ///< [n * 18 + i - 1]: odd-step slot of population i of node n
   std::vector<HaloPeer> peers;          ///< ranks this rank exchanges with, by rank
 
   /// Length of the population array: 19 values per fluid node, then the ghosts.

@@ -54,19 +54,31 @@ inline void collide_trt(NodeBlock<Real, W>& block, const std::array<Real, 3>& fo
   Real(&g)[d3q19::q][W] = block.g;
   // Every statement below is a loop over the W lanes (nodes): straight-line bodies that vectorize.
   Real rho[W], u0[W], u1[W], u2[W], uu[W], uf[W];
+  // Moments in local accumulators: summed into the block's members the lanes did not vectorize
+  // (the compiler kept them scalar, a third of the collision's time). Same order of sums per lane.
+  Real delta_rho[W], m0[W], m1[W], m2[W];
   for (int l = 0; l < W; ++l) {
-    block.delta_rho[l] = 0;
-    block.momentum[0][l] = half * force[0];
-    block.momentum[1][l] = half * force[1];
-    block.momentum[2][l] = half * force[2];
+    delta_rho[l] = 0;
+    m0[l] = half * force[0];
+    m1[l] = half * force[1];
+    m2[l] = half * force[2];
   }
-  for (std::size_t i = 0; i < d3q19::q; ++i)
+  for (std::size_t i = 0; i < d3q19::q; ++i) {
+    const Real cx = Real(c[i][0]), cy = Real(c[i][1]), cz = Real(c[i][2]);
     for (int l = 0; l < W; ++l) {
-      block.delta_rho[l] += g[i][l];
-      block.momentum[0][l] += g[i][l] * Real(c[i][0]);
-      block.momentum[1][l] += g[i][l] * Real(c[i][1]);
-      block.momentum[2][l] += g[i][l] * Real(c[i][2]);
+      const Real gi = g[i][l];
+      delta_rho[l] += gi;
+      m0[l] += gi * cx;
+      m1[l] += gi * cy;
+      m2[l] += gi * cz;
     }
+  }
+  for (int l = 0; l < W; ++l) {
+    block.delta_rho[l] = delta_rho[l];
+    block.momentum[0][l] = m0[l];
+    block.momentum[1][l] = m1[l];
+    block.momentum[2][l] = m2[l];
+  }
   for (int l = 0; l < W; ++l) {
     rho[l] = Real(1) + block.delta_rho[l];
     const Real inv_rho = Real(1) / rho[l];

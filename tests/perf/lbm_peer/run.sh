@@ -6,7 +6,9 @@
 #   IMAGE.h5: a voxel image; default a random packing of spheres of diameter 20 voxels (20 voxels
 #   per D50) at solid fraction 0.6 in a 128^3 box, made by make_lbm_image.
 # environment: ANISO_BUILD (build folder with bench_lbm and make_lbm_image; default /work/build),
-#              PEER_RANKS (default "1 2"), PRECISION (default double)
+#              PEER_RANKS (default "1 2"), PRECISION (default double),
+#              ANISO_BASELINE (optional second build folder, e.g. an older commit: its bench_lbm runs right
+#              after aniso's, interleaved, for an A/B of two versions in the same session)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 image=${1:-}
@@ -28,6 +30,11 @@ echo "image $image: ${n1}x${n2}x${n3}; $(date -u +%FT%TZ); $(lscpu | sed -n 's/^
 for ranks in $ranks_list; do
   mpiexec --oversubscribe -n "$ranks" "$build/tests/perf/bench_lbm" --image "$image" --steps "$steps" \
     --repeats "$repeats" --precision "$precision"
+  if [ -n "${ANISO_BASELINE:-}" ]; then
+    echo -n "baseline $ANISO_BASELINE: "
+    mpiexec --oversubscribe -n "$ranks" "$ANISO_BASELINE/tests/perf/bench_lbm" --image "$image" --steps "$steps" \
+      --repeats "$repeats" --precision "$precision"
+  fi
   mpiexec --oversubscribe -n "$ranks" "$work/palabos_bench" "$work/geometry.txt" "$n1" "$n2" "$n3" "$steps" \
     "$repeats" "$precision"
 done
