@@ -127,6 +127,31 @@ def print_numbers(shapes):
                       f"(K22-K33)/trK {f['K22_minus_K33_over_trace'][k]:+.4f}, K11 {f['K_11'][k]:.3e} m^2")
 
 
+def print_correlations(shapes):
+    """Pearson correlation of the permeability anisotropy with those of L^v and R^v (the paper's section
+    5: negative with L^v, positive with R^v, across 1-3 and 2-3), per shape and pooled, over the
+    checkpoints with a permeability result."""
+    pooled = {}
+    for label, shape in shapes:
+        if shape["flow"] is None:
+            continue
+        v, f = shape["voids"], shape["flow"]
+        rows = [v["checkpoint"].index(stem) for stem in f["checkpoint"]]
+        for pair, (a, b) in (("13", (1, 3)), ("23", (2, 3))):
+            k = f[f"K{a}{a}_minus_K33_over_trace"]
+            for name in ("L_v", "R_v"):
+                void = (v[f"{name}_{a}{a}"] - v[f"{name}_{b}{b}"])[rows]
+                pooled.setdefault((pair, name), ([], []))
+                pooled[(pair, name)][0].extend(k)
+                pooled[(pair, name)][1].extend(void)
+                if len(k) > 2:
+                    print(f"  {label}: Pearson of K {pair} with {name} {pair}: {np.corrcoef(k, void)[0, 1]:+.3f} "
+                          f"({len(k)} checkpoints)")
+    for (pair, name), (k, void) in pooled.items():
+        if len(k) > 2:
+            print(f"pooled: Pearson of K {pair} with {name} {pair}: {np.corrcoef(k, void)[0, 1]:+.3f} ({len(k)} points)")
+
+
 def main():
     if len(sys.argv) < 3 or any("=" not in a for a in sys.argv[2:]):
         sys.exit(__doc__)
@@ -144,6 +169,7 @@ def main():
             (r"(b) $(K_{22} - K_{33}) / \mathrm{tr}\,\mathbf{K}$", "flow", lambda c: c["K22_minus_K33_over_trace"])],
             "permeability anisotropy")
     print_numbers(shapes)
+    print_correlations(shapes)
 
 
 if __name__ == "__main__":
