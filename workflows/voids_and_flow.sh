@@ -22,7 +22,8 @@ for checkpoint in "$run"/load_0*.h5; do
   [ -f "$run/voxel/voids_$stem.h5" ] && continue
   start=$(date +%s)
   "$bin/voxel/aniso-voxel" --config "$config" --set voxel.output_dir="$run/voxel" --input "$checkpoint" \
-    --log-level info > "$run/voxel/voxel_$stem.log" 2>&1
+    --log-level info > "$run/voxel/voxel_$stem.log" 2>&1 ||
+    { echo "voids_and_flow.sh: aniso-voxel failed on $checkpoint; see $run/voxel/voxel_$stem.log" >&2; exit 1; }
   echo "$stem voxel $(($(date +%s) - start)) s load $(cut -d' ' -f1-3 /proc/loadavg)" >> "$run/times.log"
 done
 for stem in ${LBM_STEMS:-}; do
@@ -31,6 +32,7 @@ for stem in ${LBM_STEMS:-}; do
   start=$(date +%s)
   # shellcheck disable=SC2086 # LBM_ARGS is a list of options
   mpirun -np "$ranks" "$bin/lbm/aniso-lbm" --config "$config" --set lbm.output_dir="$run/lbm" ${LBM_ARGS:-} \
-    --input "$run/voxel/image_$stem.h5" --log-level info > "$run/lbm/lbm_$stem.log" 2>&1
+    --input "$run/voxel/image_$stem.h5" --log-level info > "$run/lbm/lbm_$stem.log" 2>&1 ||
+    { echo "voids_and_flow.sh: aniso-lbm failed on $stem; see $run/lbm/lbm_$stem.log" >&2; exit 1; }
   echo "$stem lbm $(($(date +%s) - start)) s on $ranks ranks load $(cut -d' ' -f1-3 /proc/loadavg)" >> "$run/times.log"
 done
