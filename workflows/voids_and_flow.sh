@@ -6,10 +6,10 @@
 #   reads runs/paper-SHAPE/load_0*.h5, writes runs/paper-SHAPE/voxel/ and runs/paper-SHAPE/lbm/
 #   BIN=<build dir> (default build), RANKS=<MPI ranks for the LBM> (default 2),
 #   LBM_STEMS="load_000 load_019" (default none), LBM_ARGS adds --set options to the LBM.
-# Then workflows/plots/paper_voids_csv.py SHAPE writes the committed CSVs (docs/paper-size/SHAPE/).
+# Then workflows/plots/paper_voids_csv.py runs/paper-SHAPE docs/paper-size/SHAPE writes the committed CSVs.
 set -euo pipefail
 cd "$(dirname "$0")/.."  # the repository root
-shape=$1
+shape=${1:?usage: workflows/voids_and_flow.sh SHAPE (spheres, ovoids-0.8, ovoids-0.625, ovoids-0.5)}
 run=runs/paper-$shape
 config=workflows/configs/paper-$shape.toml
 bin=${BIN:-build}

@@ -63,7 +63,8 @@ def plot_distributions(prefix, shapes):
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     for n, (label, shape) in enumerate(shapes):
         color = f"C{n}"
-        first, last = sorted(shape["curve_strains"], key=shape["curve_strains"].get)[::len(shape["curve_strains"]) - 1]
+        strains = shape["curve_strains"]
+        first, last = min(strains, key=strains.get), max(strains, key=strains.get)
         for stem, style in ((first, "--"), (last, "-")):
             sizes, fraction = shape["curves"][(stem, "ball")]
             axes[0].plot(sizes, fraction, style, color=color, lw=1,
