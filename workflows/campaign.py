@@ -17,8 +17,8 @@ usage:
 `stages` prints one word per usable stage, then the optional command lines
 they offer (lbm-directions: one LBM run per flow direction); for every other
 stage it writes one line to stderr saying why it is skipped. A stage counts as built when its
-executable exists, is no longer the stub of common/stage_stub.cpp (which only
-validates its input) and its --help shows the options the workflow passes.
+executable exists and its --help shows the options the workflow passes (an
+executable of an older build may lack some).
 
 The campaign's own section of the config, all keys optional:
 
@@ -73,8 +73,6 @@ STAGE_INTERFACES = {
 STAGE_FEATURES = {
     "lbm-directions": ("lbm", [([], "--direction"), (["collect"], "--input")]),
 }
-# The message of common/stage_stub.cpp: an executable that still links the stub holds it.
-STUB_MARK = b"this stage is not built yet"
 
 
 # The exit codes and kinds of common/error.hpp (docs/user-guide.md, "Exit codes").
@@ -240,12 +238,10 @@ def usable_stages(bin_dir):
             print(f"campaign: skipping {stage}: {executable} not found", file=sys.stderr)
             continue
         missing = missing_options(executable, interface)
-        with open(executable, "rb") as binary:
-            if STUB_MARK in binary.read():
-                missing.append("a computation (it is the stage stub)")
         if missing:
-            print(f"campaign: skipping {stage}: {os.path.basename(executable)} is not built yet "
-                  f"(it lacks: {', '.join(missing)}); no {stage} results are written", file=sys.stderr)
+            print(f"campaign: skipping {stage}: {os.path.basename(executable)} does not offer the command "
+                  f"lines the workflow uses (it lacks: {', '.join(missing)}; an older build?); no {stage} "
+                  f"results are written", file=sys.stderr)
         else:
             usable.append(stage)
     for feature, (stage, interface) in STAGE_FEATURES.items():

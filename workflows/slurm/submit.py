@@ -15,7 +15,7 @@ local `make campaign` writes, and resubmitting after a failure or a kill
 submits only the steps whose files are missing or out of date, and of a job
 array only the tasks whose files are (--array=3 when one probe fork is lost).
 
-Stages that are not built yet are left out with one line each on stderr.
+Stages whose executables are missing or lack the workflow's options are left out, one line each on stderr.
 MPI steps get --ntasks=N (--ranks, default 1), serial ones 1 task. Each kind
 of job can have its own resources in the config (time, mem, ranks,
 cpus_per_task under [workflow.resources.<kind>], `campaign.py` documents
