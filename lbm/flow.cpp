@@ -209,12 +209,12 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
     {
       ScopedEvent event(events, events.stream_collide);
       if (measure)
-        stream_collide<Real, true>(parity, f.data(), topology.slot.data(), topology.n_fluid, force,
-                                   Real(rates.omega_plus), Real(rates.omega_minus),
+        stream_collide<Real, true>(parity, f.data(), topology.slot.data(), topology.n_fluid, topology.stride,
+                                   force, Real(rates.omega_plus), Real(rates.omega_minus),
                                    check ? moments.data() : moments_before.data());
       else
-        stream_collide<Real, false>(parity, f.data(), topology.slot.data(), topology.n_fluid, force,
-                                    Real(rates.omega_plus), Real(rates.omega_minus), nullptr);
+        stream_collide<Real, false>(parity, f.data(), topology.slot.data(), topology.n_fluid, topology.stride,
+                                    force, Real(rates.omega_plus), Real(rates.omega_minus), nullptr);
     }
     if (parity == Parity::odd) {
       ScopedEvent event(events, events.halo);

@@ -21,7 +21,7 @@ HaloExchange<Real>::HaloExchange(const Topology& topology, const mpi::Comm& comm
 }
 
 template <class Real> void HaloExchange<Real>::fill(std::span<Real> populations) {
-  const std::size_t ghost_base = static_cast<std::size_t>(d3q19::q * topology_->n_fluid);
+  const std::size_t ghost_base = topology_->ghost_base();
   requests_.clear();
   for (const HaloPeer& peer : topology_->peers) {
     if (peer.recv_count == 0) continue;
@@ -43,7 +43,7 @@ template <class Real> void HaloExchange<Real>::fill(std::span<Real> populations)
 }
 
 template <class Real> void HaloExchange<Real>::give_back(std::span<Real> populations) {
-  const std::size_t ghost_base = static_cast<std::size_t>(d3q19::q * topology_->n_fluid);
+  const std::size_t ghost_base = topology_->ghost_base();
   requests_.clear();
   for (std::size_t p = 0; p < topology_->peers.size(); ++p) {
     const HaloPeer& peer = topology_->peers[p];

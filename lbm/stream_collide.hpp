@@ -37,15 +37,16 @@ inline void record_moments(const NodeBlock<Real, W>& block, std::size_t first, M
 
 /// Even step of W nodes: each node's own slots in, post-collision population i into its slot opp(i).
 template <class Real, int W, bool Measure>
-inline void collide_even_block(Real* f, std::size_t n, std::size_t first, const std::array<Real, 3>& force,
-                               Real omega_plus, Real omega_minus, MomentsRecord* moments) {
+inline void collide_even_block(Real* f, std::size_t stride, std::size_t first,
+                               const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
+                               MomentsRecord* moments) {
   NodeBlock<Real, W> block;
   for (std::size_t i = 0; i < d3q19::q; ++i)
     for (int l = 0; l < W; ++l)
-      block.g[i][l] = f[i * n + first + static_cast<std::size_t>(l)];
+      block.g[i][l] = f[i * stride + first + static_cast<std::size_t>(l)];
   collide_trt<Real, W>(block, force, omega_plus, omega_minus);
   for (std::size_t i = 0; i < d3q19::q; ++i) {
-    const auto slot = static_cast<std::size_t>(d3q19::opposite(static_cast<int>(i))) * n + first;
+    const auto slot = static_cast<std::size_t>(d3q19::opposite(static_cast<int>(i))) * stride + first;
     for (int l = 0; l < W; ++l)
       f[slot + static_cast<std::size_t>(l)] = block.g[i][l];
   }
@@ -78,18 +79,20 @@ inline void collide_odd_block(Real* f, const std::uint32_t* __restrict slot, std
   record_moments<Real, W, Measure>(block, first, moments);
 }
 
-/// One step over all `n_fluid` nodes of the population array `f` (odd steps need the ghost slots filled).
+/// One step over all `n_fluid` nodes of the population array `f`, whose populations lie `stride` apart
+/// (odd steps need the ghost slots filled).
 template <class Real, bool Measure>
 void stream_collide(Parity parity, Real* f, const std::uint32_t* slot, std::int64_t n_fluid,
-                    const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
+                    std::int64_t stride, const std::array<Real, 3>& force, Real omega_plus, Real omega_minus,
                     MomentsRecord* moments) {
   const auto n = static_cast<std::size_t>(n_fluid);
+  const auto s = static_cast<std::size_t>(stride);
   std::size_t node = 0;
   if (parity == Parity::even) {
     for (; node + block_width <= n; node += block_width)
-      collide_even_block<Real, block_width, Measure>(f, n, node, force, omega_plus, omega_minus, moments);
+      collide_even_block<Real, block_width, Measure>(f, s, node, force, omega_plus, omega_minus, moments);
     for (; node < n; ++node)
-      collide_even_block<Real, 1, Measure>(f, n, node, force, omega_plus, omega_minus, moments);
+      collide_even_block<Real, 1, Measure>(f, s, node, force, omega_plus, omega_minus, moments);
   } else {
     for (; node + block_width <= n; node += block_width)
       collide_odd_block<Real, block_width, Measure>(f, slot, node, force, omega_plus, omega_minus, moments);

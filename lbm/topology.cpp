@@ -69,6 +69,7 @@ Upstream find_upstream(const Index3& x, int i, const Faces& faces, const Geometr
 }
 
 void check_index_range(std::int64_t n_fluid) {
+  n_fluid = padded_stride(n_fluid);
   const auto limit = static_cast<std::int64_t>(std::numeric_limits<std::uint32_t>::max() / (q + 1));
   require_input(n_fluid < limit, fmt::format("one rank holds {} fluid voxels, more than the {} its 32-bit "
                                              "streaming table addresses; run on more MPI ranks",
@@ -124,6 +125,8 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
   // Streaming table: population i streaming from population j of voxel y reads and writes the slot
   // (y, opp(j)) in odd steps (topology.hpp). Remote slots become requests to their owners.
   const auto n_fluid = static_cast<std::size_t>(topology.n_fluid);
+  topology.stride = padded_stride(topology.n_fluid);
+  const auto stride = static_cast<std::size_t>(topology.stride);
   topology.slot.resize(static_cast<std::size_t>(q - 1) * n_fluid);
   std::map<int, std::vector<Request>> requests;
   for (std::size_t node = 0; node < n_fluid; ++node)
@@ -133,7 +136,7 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
       const std::size_t entry = node * (q - 1) + static_cast<std::size_t>(i - 1);
       if (partition.is_local(up.cell)) {
         topology.slot[entry] =
-            static_cast<std::uint32_t>(static_cast<std::size_t>(population) * n_fluid +
+            static_cast<std::uint32_t>(static_cast<std::size_t>(population) * stride +
                                        static_cast<std::size_t>(local_fluid[box_index(up.cell)]));
       } else {
         requests[partition.owner(up.cell)].push_back({geometry.linear(up.cell) * q + population, entry});
@@ -145,7 +148,7 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
   std::vector<int> send_counts(static_cast<std::size_t>(n_ranks), 0);
   std::vector<std::int64_t> outgoing;
   std::vector<int> outgoing_displacements(static_cast<std::size_t>(n_ranks), 0);
-  const std::size_t ghost_base = static_cast<std::size_t>(q) * n_fluid;
+  const std::size_t ghost_base = topology.ghost_base();
   std::uint32_t next_slot = 0;
   for (auto& [peer, list] : requests) {
     std::sort(list.begin(), list.end(), [](const Request& a, const Request& b) { return a.key < b.key; });
@@ -162,7 +165,7 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
     topology.peers.push_back(std::move(halo));
   }
   topology.n_ghost = next_slot;
-  check_index_range(topology.n_fluid + topology.n_ghost / q + 1);
+  check_index_range(topology.stride + topology.n_ghost / q + 1);
 
   std::vector<int> recv_counts(static_cast<std::size_t>(n_ranks), 0);
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm.raw());
@@ -199,12 +202,17 @@ Topology build_topology(std::span<const std::uint8_t> phase, const Partition& pa
       check_invariant(partition.is_local(cell) && local_fluid[box_index(cell)] >= 0,
                       "a halo request names a local fluid voxel");
       peer->send_index.push_back(static_cast<std::uint32_t>(
-          population * n_fluid + static_cast<std::size_t>(local_fluid[box_index(cell)])));
+          population * stride + static_cast<std::size_t>(local_fluid[box_index(cell)])));
     }
   }
   std::sort(topology.peers.begin(), topology.peers.end(),
             [](const HaloPeer& a, const HaloPeer& b) { return a.rank < b.rank; });
   return topology;
+}
+
+std::int64_t padded_stride(std::int64_t n) {
+  constexpr std::int64_t period = 512, offset = 24;
+  return n + ((offset - n) % period + period) % period;
 }
 
 } // namespace aniso::lbm

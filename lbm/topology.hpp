@@ -56,6 +56,7 @@ struct Topology {
   Partition partition;
   Faces faces = all_periodic;
   std::int64_t n_fluid = 0;             ///< fluid nodes of this rank
+  std::int64_t stride = 0;              ///< distance between two populations' arrays (padded_stride)
   std::int64_t n_fluid_global = 0;      ///< fluid nodes of the whole image
   std::int64_t n_voxels_global = 0;     ///< all voxels of the image
   std::int64_t n_ghost = 0;             ///< ghost slots (filled before, returned after each odd step)
@@ -63,11 +64,20 @@ struct Topology {
   std::vector<std::uint32_t> slot;      ///< [n * 18 + i - 1]: odd-step slot of population i of node n
   std::vector<HaloPeer> peers;          ///< ranks this rank exchanges with, by rank
 
-  /// Length of the population array: 19 values per fluid node, then the ghosts.
+  /// Length of the population array: 19 arrays of `stride` values (the first n_fluid used), then the
+  /// ghosts.
   [[nodiscard]] std::size_t array_size() const {
-    return static_cast<std::size_t>(d3q19::q * n_fluid + n_ghost);
+    return static_cast<std::size_t>(d3q19::q * stride + n_ghost);
   }
+  /// First ghost slot.
+  [[nodiscard]] std::size_t ghost_base() const { return static_cast<std::size_t>(d3q19::q * stride); }
 };
+
+/// The population arrays' stride for n fluid nodes: n padded (by fewer than 512) to 24 modulo 512, so
+/// that the 19 arrays start 192 bytes apart modulo 4 KiB in double (96 in float). With a stride that
+/// is a multiple of 512 they all start at the same offset in a page, loads and stores of different
+/// populations alias, and an even step ran 1.7x slower (docs/performance.md).
+std::int64_t padded_stride(std::int64_t n);
 
 /// Builds the local topology from the whole image (identical on every rank; 1 = solid, x1 fastest).
 /// Collective: ranks exchange their halo requests. InputError if the image has no fluid voxel or a

@@ -45,9 +45,31 @@ TEST(Streaming, SlotTableIsAPermutationForEveryKindOfFace) {
       ++uses[static_cast<std::size_t>(node)];
     for (std::uint32_t slot : t.slot)
       ++uses[slot];
-    for (std::size_t k = 0; k < uses.size(); ++k)
-      ASSERT_EQ(uses[k], 1) << "slot " << k << " of faces " << to_string(faces[0]) << ", "
-                            << to_string(faces[1]) << ", " << to_string(faces[2]);
+    // The padding after each population's n_fluid values (Topology::stride) is never touched.
+    const auto stride = static_cast<std::size_t>(t.stride);
+    for (std::size_t k = 0; k < uses.size(); ++k) {
+      const bool padding = k < t.ghost_base() && k % stride >= static_cast<std::size_t>(t.n_fluid);
+      ASSERT_EQ(uses[k], padding ? 0 : 1) << "slot " << k << " of faces " << to_string(faces[0]) << ", "
+                                          << to_string(faces[1]) << ", " << to_string(faces[2]);
+    }
+  }
+}
+
+TEST(Streaming, PopulationArraysStartApartWithinAPage) {
+  for (const std::int64_t n : {1, 24, 25, 511, 512, 536, 750727, 2097152}) {
+    const std::int64_t stride = padded_stride(n);
+    EXPECT_GE(stride, n);
+    EXPECT_LT(stride - n, 512);
+    // 19 arrays of doubles start in 19 different 64-byte lines of a 4 KiB page, floats in 19 different
+    // 32-byte halves.
+    std::vector<bool> line(64, false), half_line(128, false);
+    for (std::int64_t i = 0; i < 19; ++i) {
+      const auto d = static_cast<std::size_t>(i * stride * 8 % 4096 / 64);
+      const auto f = static_cast<std::size_t>(i * stride * 4 % 4096 / 32);
+      EXPECT_FALSE(line[d]) << "n = " << n << ", population " << i;
+      EXPECT_FALSE(half_line[f]) << "n = " << n << ", population " << i;
+      line[d] = half_line[f] = true;
+    }
   }
 }
 
@@ -96,8 +118,8 @@ TEST(Streaming, AlternatingStepsMatchTheTwoArrayPullSchemeBitForBit) {
   std::vector<MomentsRecord> aa_moments(n), pull_moments(n);
   for (int step = 1; step <= 41; ++step) {
     const Parity parity = step % 2 == 1 ? Parity::even : Parity::odd;
-    stream_collide<double, true>(parity, aa.data(), t.slot.data(), t.n_fluid, force, rates.omega_plus,
-                                 rates.omega_minus, aa_moments.data());
+    stream_collide<double, true>(parity, aa.data(), t.slot.data(), t.n_fluid, t.stride, force,
+                                 rates.omega_plus, rates.omega_minus, aa_moments.data());
     pull_step(lattice.image, node_of_cell, a, b, pull_moments, force, rates.omega_plus, rates.omega_minus);
     std::swap(a, b);
     for (std::size_t node = 0; node < n; ++node) {
