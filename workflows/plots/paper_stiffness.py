@@ -8,7 +8,7 @@ Pearson correlations c1, c2 of C11 - C33 and C22 - C33 with each contact fabric 
 (C11 - C33)/K_C (paper: 1.4 - 2.1). Prints Markdown tables (docs/paper-comparison.md).
 
 usage: paper_stiffness.py OUTPUT_PREFIX LABEL=PROBE_CSV_FOLDER,FABRIC_SERIES.csv[,MAX_STRAIN] [...]
-  writes OUTPUT_PREFIX_C123.png (first shape) and OUTPUT_PREFIX_A.png (all shapes); MAX_STRAIN
+  writes OUTPUT_PREFIX_C123.png (a row per shape) and OUTPUT_PREFIX_A.png (all shapes); MAX_STRAIN
   (a fraction) keeps only the checkpoints up to that loading strain
 """
 import csv
@@ -83,16 +83,18 @@ def draw(full, small, x, y, **style):
 
 def main(prefix, runs):
     shapes = [(label, *shape_series(*spec.split(","))) for label, spec in runs]
-    label, _, strain, K, C, _ = shapes[0]
-    figure, (full, small) = plt.subplots(1, 2, figsize=(10, 4.2), gridspec_kw={"width_ratios": [2, 1]})
-    for i in range(3):
-        draw(full, small, strain, C[:, i, i] / K, marker="o", ms=3, label=f"$C_{{{i + 1}{i + 1}}}/K_C$")
-    full.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
-    full.set_ylabel(r"$C_{ii}/K_{\mathbf{C}}$")
-    full.grid(alpha=0.3)
-    full.legend(fontsize=8)
-    small_strain_panel(small)
-    full.set_title(f"Fig. C123 at paper size: {label}")
+    # Fig. C123: one row per shape, the full range and the first 1% side by side.
+    figure, axes = plt.subplots(len(shapes), 2, figsize=(10, 3.6 * len(shapes)), squeeze=False,
+                                gridspec_kw={"width_ratios": [2, 1]})
+    for (full, small), (label, _, strain, K, C, _) in zip(axes, shapes):
+        for i in range(3):
+            draw(full, small, strain, C[:, i, i] / K, marker="o", ms=3, label=f"$C_{{{i + 1}{i + 1}}}/K_C$")
+        full.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
+        full.set_ylabel(r"$C_{ii}/K_{\mathbf{C}}$")
+        full.grid(alpha=0.3)
+        full.legend(fontsize=8)
+        small_strain_panel(small)
+        full.set_title(f"Fig. C123 at paper size: {label}")
     figure.tight_layout()
     figure.savefig(f"{prefix}_C123.png", dpi=150)
 
@@ -100,8 +102,8 @@ def main(prefix, runs):
     for row, (a, title) in enumerate([(1, r"(a) across $x_1$-$x_3$"), (2, r"(b) across $x_2$-$x_3$")]):
         full, small = axes[row]
         for k, (label, _, x, Kx, Cx, _) in enumerate(shapes):  # a subset's line must not hide its superset's
-            draw(full, small, x, (Cx[:, a - 1, a - 1] - Cx[:, 2, 2]) / Kx, marker="o", ms=5 - k, lw=2.5 - 0.7 * k,
-                 ls=["-", "--", ":"][k % 3], label=label)
+            draw(full, small, x, (Cx[:, a - 1, a - 1] - Cx[:, 2, 2]) / Kx, marker="o", ms=max(5 - k, 2),
+                 lw=max(2.5 - 0.5 * k, 0.8), ls=["-", "--", ":", "-."][k % 4], label=label)
         full.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
         full.set_ylabel(fr"$(C_{{{a}{a}}} - C_{{33}})/K_{{\mathbf{{C}}}}$")
         full.set_title(f"Fig. A{title}")
