@@ -1,7 +1,9 @@
 #!/bin/bash
 # Issue 21, section 4: the committed CSVs of a shape's relaxed checkpoints, from what
 # workflows/relax_and_probe.sh has finished so far: the fabric series of the relaxed checkpoints with
-# their probe results (aniso-fabric series) and each probe's CSV. Rerun as more checkpoints finish.
+# their probe results (aniso-fabric series) and each probe's CSV, and apart (probes_unchecked/) those
+# of probes the linearity check refused, run again with probe.check_increment = false into
+# runs/paper-SHAPE/relaxed/unchecked/. Rerun as more checkpoints finish.
 # usage: workflows/relaxed_csvs.sh SHAPE   (spheres, ovoids-0.8, ovoids-0.625, ovoids-0.5)
 #   reads runs/paper-SHAPE/relaxed/, writes docs/paper-size/<folder>/relaxed/{fabric_series*.csv,probes/}
 #   (<folder>: spheres or ovoids-0.8 ...); BIN=<build dir> (default build)
@@ -15,12 +17,21 @@ bin=${BIN:-build}
 [ -f "$config" ] || { echo "relaxed_csvs.sh: no config $config" >&2; exit 2; }
 compgen -G "$relaxed/load_0*.h5" > /dev/null ||
   { echo "relaxed_csvs.sh: no relaxed checkpoints $relaxed/load_0*.h5 (run workflows/relax_and_probe.sh $shape)" >&2; exit 2; }
-compgen -G "$relaxed/probe_load_0*.h5" > /dev/null || { echo "relaxed_csvs.sh: no probe results in $relaxed" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-"$bin/fabric/aniso-fabric" series --config "$config" --input "$relaxed"/load_0*.h5 \
-  --probe "$relaxed"/probe_load_0*.h5 --output "$work/fabric_series.h5" --log-level warn
-mkdir -p "$out/probes"
+probes=()  # the probes that passed their checks, if any
+compgen -G "$relaxed/probe_load_0*.h5" > /dev/null && probes=(--probe "$relaxed"/probe_load_0*.h5)
+"$bin/fabric/aniso-fabric" series --config "$config" --input "$relaxed"/load_0*.h5 "${probes[@]}" \
+  --output "$work/fabric_series.h5" --log-level warn
+mkdir -p "$out"
 cp "$work/fabric_series.csv" "$work/fabric_series_correlations.csv" "$out/"
-cp "$relaxed"/probe_load_0*.csv "$out/probes/"
-echo "relaxed_csvs.sh: $(ls "$relaxed"/load_0*.h5 | wc -l) relaxed checkpoints, $(ls "$out"/probes/*.csv | wc -l) probes -> $out"
+if [ ${#probes[@]} -gt 0 ]; then
+  mkdir -p "$out/probes"
+  cp "$relaxed"/probe_load_0*.csv "$out/probes/"
+fi
+# Probes the linearity check refused, run again with probe.check_increment = false (kept apart: flagged).
+if compgen -G "$relaxed/unchecked/probe_load_0*.csv" > /dev/null; then
+  mkdir -p "$out/probes_unchecked"
+  cp "$relaxed"/unchecked/probe_load_0*.csv "$out/probes_unchecked/"
+fi
+echo "relaxed_csvs.sh: $(ls "$relaxed"/load_0*.h5 | wc -l) relaxed checkpoints, $(ls "$relaxed"/probe_load_0*.csv 2> /dev/null | wc -l) probes, $(ls "$relaxed"/unchecked/probe_load_0*.csv 2> /dev/null | wc -l) unchecked -> $out"
