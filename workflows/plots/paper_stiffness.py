@@ -9,7 +9,9 @@ Pearson correlations c1, c2 of C11 - C33 and C22 - C33 with each contact fabric 
 
 usage: paper_stiffness.py OUTPUT_PREFIX LABEL=PROBE_CSV_FOLDER,FABRIC_SERIES.csv[,MAX_STRAIN] [...]
   writes OUTPUT_PREFIX_C123.png (a row per shape) and OUTPUT_PREFIX_A.png (all shapes); MAX_STRAIN
-  (a fraction) keeps only the checkpoints up to that loading strain
+  (a fraction) keeps only the checkpoints up to that loading strain. Probes in a folder
+  probes_unchecked beside PROBE_CSV_FOLDER (refused by the linearity check, run again with it off)
+  are drawn as open markers and left out of every number.
 """
 import csv
 import glob
@@ -50,6 +52,15 @@ def read_fabric(path):
                 for row in csv.DictReader(f)}
 
 
+def unchecked_probes(probe_folder, max_strain="inf"):
+    """(strain, K_C, C) arrays of the probes in the sibling folder probes_unchecked (probes the linearity
+    check refused, run again with it off): drawn as open markers, left out of every number."""
+    folder = os.path.join(os.path.dirname(os.path.normpath(probe_folder)), "probes_unchecked")
+    probes = sorted((p for p in read_probes(folder).values() if p[0] <= float(max_strain)), key=lambda p: p[0])
+    return (np.array([p[0] for p in probes]), np.array([p[1] for p in probes]),
+            np.array([p[2] for p in probes]).reshape(-1, 3, 3))
+
+
 def shape_series(probe_folder, fabric_csv, max_strain="inf"):
     probes, fabric = read_probes(probe_folder), read_fabric(fabric_csv)
     stems = sorted((s for s in probes if s in fabric and probes[s][0] <= float(max_strain)), key=lambda s: probes[s][0])
@@ -76,19 +87,30 @@ def small_strain_panel(axis):
 
 
 def draw(full, small, x, y, **style):
-    full.plot(100 * x, y, **style)
+    """Draws y(x) on the full range and on the small-strain panel; returns the line's colour."""
+    (line,) = full.plot(100 * x, y, **style)
     keep = x <= SMALL_STRAIN
-    small.plot(100 * x[keep], y[keep], **style)
+    small.plot(100 * x[keep], y[keep], **{**style, "color": line.get_color()})
+    return line.get_color()
+
+
+def draw_unchecked(full, small, x, y, color, label=None):
+    """Probes the linearity check refused: open markers, no line."""
+    if len(x):
+        draw(full, small, x, y, ls="none", marker="o", ms=6, mfc="none", color=color, label=label)
 
 
 def main(prefix, runs):
     shapes = [(label, *shape_series(*spec.split(","))) for label, spec in runs]
+    unchecked = [unchecked_probes(*[v for k, v in enumerate(spec.split(",")) if k != 1]) for _, spec in runs]
     # Fig. C123: one row per shape, the full range and the first 1% side by side.
     figure, axes = plt.subplots(len(shapes), 2, figsize=(10, 3.6 * len(shapes)), squeeze=False,
                                 gridspec_kw={"width_ratios": [2, 1]})
-    for (full, small), (label, _, strain, K, C, _) in zip(axes, shapes):
+    for (full, small), (label, _, strain, K, C, _), (xu, Ku, Cu) in zip(axes, shapes, unchecked):
         for i in range(3):
-            draw(full, small, strain, C[:, i, i] / K, marker="o", ms=3, label=f"$C_{{{i + 1}{i + 1}}}/K_C$")
+            color = draw(full, small, strain, C[:, i, i] / K, marker="o", ms=3, label=f"$C_{{{i + 1}{i + 1}}}/K_C$")
+            draw_unchecked(full, small, xu, Cu[:, i, i] / Ku if len(xu) else xu, color,
+                           "refused by the linearity check" if i == 2 else None)
         full.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
         full.set_ylabel(r"$C_{ii}/K_{\mathbf{C}}$")
         full.grid(alpha=0.3)
@@ -101,9 +123,11 @@ def main(prefix, runs):
     figure, axes = plt.subplots(2, 2, figsize=(11, 8), gridspec_kw={"width_ratios": [2, 1]})
     for row, (a, title) in enumerate([(1, r"(a) across $x_1$-$x_3$"), (2, r"(b) across $x_2$-$x_3$")]):
         full, small = axes[row]
-        for k, (label, _, x, Kx, Cx, _) in enumerate(shapes):  # a subset's line must not hide its superset's
-            draw(full, small, x, (Cx[:, a - 1, a - 1] - Cx[:, 2, 2]) / Kx, marker="o", ms=max(5 - k, 2),
-                 lw=max(2.5 - 0.5 * k, 0.8), ls=["-", "--", ":", "-."][k % 4], label=label)
+        for k, ((label, _, x, Kx, Cx, _), (xu, Ku, Cu)) in enumerate(zip(shapes, unchecked)):
+            # a subset's line must not hide its superset's
+            color = draw(full, small, x, (Cx[:, a - 1, a - 1] - Cx[:, 2, 2]) / Kx, marker="o", ms=max(5 - k, 2),
+                         lw=max(2.5 - 0.5 * k, 0.8), ls=["-", "--", ":", "-."][k % 4], label=label)
+            draw_unchecked(full, small, xu, (Cu[:, a - 1, a - 1] - Cu[:, 2, 2]) / Ku if len(xu) else xu, color)
         full.set_xlabel(r"strain $-\varepsilon_{11}$ (%)")
         full.set_ylabel(fr"$(C_{{{a}{a}}} - C_{{33}})/K_{{\mathbf{{C}}}}$")
         full.set_title(f"Fig. A{title}")
