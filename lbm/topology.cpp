@@ -70,9 +70,10 @@ Upstream find_upstream(const Index3& x, int i, const Faces& faces, const Geometr
 
 void check_index_range(std::int64_t n_fluid) {
   const auto limit = static_cast<std::int64_t>(std::numeric_limits<std::uint32_t>::max() / (q + 1));
-  require_input(padded_stride(n_fluid) < limit, fmt::format("one rank holds {} fluid voxels, more than the {} its 32-bit "
-                                             "streaming table addresses; run on more MPI ranks",
-                                             n_fluid, limit));
+  require_input(padded_stride(n_fluid) < limit,
+                fmt::format("one rank holds {} fluid voxels, more than the {} its 32-bit "
+                            "streaming table addresses; run on more MPI ranks",
+                            n_fluid, limit));
 }
 
 } // namespace
