@@ -5,7 +5,7 @@
 # of probes the linearity check refused, run again with probe.check_increment = false into
 # runs/paper-SHAPE/relaxed/unchecked/. Rerun as more checkpoints finish.
 # usage: workflows/relaxed_csvs.sh SHAPE   (spheres, ovoids-0.8, ovoids-0.625, ovoids-0.5)
-#   reads runs/paper-SHAPE/relaxed/, writes docs/paper-size/<folder>/relaxed/{fabric_series*.csv,probes/}
+#   reads runs/paper-SHAPE/relaxed/, writes docs/paper-size/<folder>/relaxed/{fabric_series*.csv,relax_steps.csv,probes/}
 #   (<folder>: spheres or ovoids-0.8 ...); BIN=<build dir> (default build)
 set -euo pipefail
 cd "$(dirname "$0")/.."  # the repository root
@@ -34,4 +34,14 @@ if compgen -G "$relaxed/unchecked/probe_load_0*.csv" > /dev/null; then
   mkdir -p "$out/probes_unchecked"
   cp "$relaxed"/unchecked/probe_load_0*.csv "$out/probes_unchecked/"
 fi
+# What each relaxation took (from aniso-dem relax's closing log line): steps, the verification windows
+# it left and had to relax again after, and the state before and after.
+{
+  echo "checkpoint,steps,restarts,p_before_Pa,p_after_Pa,e_before,e_after,force_ratio_before,force_ratio_after"
+  for log in "$relaxed"/relax_load_0*.log; do
+    line=$(grep "info relax of" "$log") || continue  # still running
+    restarts=$(grep -c "relaxing again" "$log" || true)
+    echo "$line" | sed -E 's/.*relax of .*\/(load_[0-9]+)\.h5.: ([0-9]+) steps, p ([^ ]+) -> ([^ ]+) Pa, void ratio ([^ ]+) -> ([^ ]+), unbalanced-force ratio ([^ ]+) -> ([^,]+),.*/\1,\2,'"$restarts"',\3,\4,\5,\6,\7,\8/'
+  done
+} > "$out/relax_steps.csv"
 echo "relaxed_csvs.sh: $(ls "$relaxed"/load_0*.h5 | wc -l) relaxed checkpoints, $(ls "$relaxed"/probe_load_0*.csv 2> /dev/null | wc -l) probes, $(ls "$relaxed"/unchecked/probe_load_0*.csv 2> /dev/null | wc -l) unchecked -> $out"
