@@ -2,7 +2,8 @@
 """workflows/plots/paper_stiffness.py on synthetic probe and fabric CSVs whose numbers are known:
 C11 - C33 = 4.1 K_C (H11 - H33)/(tr H/3) at every strain gives the ratio 4.10 and c1 = 1.000; a
 probe in probes_unchecked/ is drawn but left out of every number; MAX_STRAIN drops the later
-checkpoints; a malformed argument stops with the usage.
+checkpoints; a label may hold "="; probes that match no fabric row and a malformed argument stop
+with a message.
 
 usage: test_paper_stiffness.py SOURCE_DIR
 """
@@ -109,6 +110,18 @@ class PaperStiffness(unittest.TestCase):
         (shape,) = table_rows(result.stdout, "early")
         self.assertEqual(shape[1], "5")
         self.assertEqual(shape[2], f"{RATIO * 1.25 * h_anisotropy(0.05):.2f} at 5%")
+
+    def test_a_label_may_hold_an_equals_sign(self):
+        result = run(self.prefix, f"alpha = 0.5={self.probes},{self.fabric}")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(len(table_rows(result.stdout, "alpha = 0.5")), 1)
+
+    def test_probes_matching_no_fabric_row_are_named(self):
+        empty = os.path.join(self.dir.name, "empty.csv")
+        write_fabric(empty, [])
+        result = run(self.prefix, f"synthetic={self.probes},{empty}")
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn(f"no probe in {self.probes} matches a checkpoint of {empty}", result.stderr)
 
     def test_an_argument_without_its_fabric_series_stops_with_the_usage(self):
         result = run(self.prefix, f"synthetic={self.probes}")

@@ -50,7 +50,7 @@ def main():
     if len(sys.argv) < 5:
         raise SystemExit(__doc__)
     out, target, tolerance = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
-    runs = [arg.split("=", 1) for arg in sys.argv[4:]]
+    runs = [arg.rsplit("=", 1) for arg in sys.argv[4:]]
     os.makedirs(out, exist_ok=True)
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.axhspan(target - tolerance, target + tolerance, color="0.85", label="target +- tolerance")

@@ -64,6 +64,9 @@ def unchecked_probes(probe_folder, max_strain="inf"):
 def shape_series(probe_folder, fabric_csv, max_strain="inf"):
     probes, fabric = read_probes(probe_folder), read_fabric(fabric_csv)
     stems = sorted((s for s in probes if s in fabric and probes[s][0] <= float(max_strain)), key=lambda s: probes[s][0])
+    if not stems:
+        sys.exit(f"paper_stiffness.py: no probe in {probe_folder} matches a checkpoint of {fabric_csv}"
+                 f" at a strain up to {max_strain}")
     strain = np.array([probes[s][0] for s in stems])
     K = np.array([probes[s][1] for s in stems])
     C = np.array([probes[s][2] for s in stems])
@@ -163,4 +166,4 @@ def main(prefix, runs):
 if __name__ == "__main__":
     if len(sys.argv) < 3 or any("=" not in arg or "," not in arg for arg in sys.argv[2:]):
         sys.exit(__doc__)
-    main(sys.argv[1], [tuple(arg.split("=", 1)) for arg in sys.argv[2:]])
+    main(sys.argv[1], [tuple(arg.rsplit("=", 1)) for arg in sys.argv[2:]])

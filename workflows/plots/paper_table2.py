@@ -41,4 +41,4 @@ def main(runs):
 if __name__ == "__main__":
     if len(sys.argv) < 2 or any("=" not in arg for arg in sys.argv[1:]):
         sys.exit(__doc__)
-    main([tuple(arg.split("=", 1)) for arg in sys.argv[1:]])
+    main([tuple(arg.rsplit("=", 1)) for arg in sys.argv[1:]])

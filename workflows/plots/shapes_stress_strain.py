@@ -58,4 +58,4 @@ def main(prefix, runs):
 if __name__ == "__main__":
     if len(sys.argv) < 3 or any("=" not in arg for arg in sys.argv[2:]):
         sys.exit(__doc__)
-    main(sys.argv[1], [tuple(arg.split("=", 1)) for arg in sys.argv[2:]])
+    main(sys.argv[1], [tuple(arg.rsplit("=", 1)) for arg in sys.argv[2:]])
