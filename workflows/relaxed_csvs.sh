@@ -35,13 +35,21 @@ if compgen -G "$relaxed/unchecked/probe_load_0*.csv" > /dev/null; then
   cp "$relaxed"/unchecked/probe_load_0*.csv "$out/probes_unchecked/"
 fi
 # What each relaxation took (from aniso-dem relax's closing log line): steps, the verification windows
-# it left and had to relax again after, and the state before and after.
+# it left and had to relax again after, and the state before and after; verified: false for a
+# relaxation without the verification window (relax_and_probe.sh's "# settings:" line says
+# verify_steps=0: the critical state's settings, or the fallback after a verified attempt failed);
+# attempt_restarts: the windows such a failed attempt left (relax_<stem>.unverified_attempt.log).
 {
-  echo "checkpoint,steps,restarts,p_before_Pa,p_after_Pa,e_before,e_after,force_ratio_before,force_ratio_after"
-  for log in "$relaxed"/relax_load_0*.log; do
+  echo "checkpoint,steps,restarts,p_before_Pa,p_after_Pa,e_before,e_after,force_ratio_before,force_ratio_after,verified,attempt_restarts"
+  for log in "$relaxed"/relax_load_0??.log; do
     line=$(grep "info relax of" "$log") || continue  # still running
     restarts=$(grep -c "relaxing again" "$log" || true)
-    echo "$line" | sed -E 's/.*relax of .*\/(load_[0-9]+)\.h5.: ([0-9]+) steps, p ([^ ]+) -> ([^ ]+) Pa, void ratio ([^ ]+) -> ([^ ]+), unbalanced-force ratio ([^ ]+) -> ([^,]+),.*/\1,\2,'"$restarts"',\3,\4,\5,\6,\7,\8/'
+    verified=true
+    grep -q "^# settings:.*verify_steps=0" "$log" && verified=false
+    attempt=${log%.log}.unverified_attempt.log
+    attempt_restarts=0
+    [ -f "$attempt" ] && attempt_restarts=$(grep -c "relaxing again" "$attempt" || true)
+    echo "$line" | sed -E 's/.*relax of .*\/(load_[0-9]+)\.h5.: ([0-9]+) steps, p ([^ ]+) -> ([^ ]+) Pa, void ratio ([^ ]+) -> ([^ ]+), unbalanced-force ratio ([^ ]+) -> ([^,]+),.*/\1,\2,'"$restarts"',\3,\4,\5,\6,\7,\8,'"$verified,$attempt_restarts"'/'
   done
 } > "$out/relax_steps.csv"
 echo "relaxed_csvs.sh: $(ls "$relaxed"/load_0*.h5 | wc -l) relaxed checkpoints, $(ls "$relaxed"/probe_load_0*.csv 2> /dev/null | wc -l) probes, $(ls "$relaxed"/unchecked/probe_load_0*.csv 2> /dev/null | wc -l) unchecked -> $out"
