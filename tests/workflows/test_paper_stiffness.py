@@ -9,6 +9,7 @@ usage: test_paper_stiffness.py SOURCE_DIR
 """
 import csv
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -119,9 +120,21 @@ class PaperStiffness(unittest.TestCase):
     def test_probes_matching_no_fabric_row_are_named(self):
         empty = os.path.join(self.dir.name, "empty.csv")
         write_fabric(empty, [])
+        shutil.rmtree(os.path.join(self.dir.name, "relaxed", "probes_unchecked"))
         result = run(self.prefix, f"synthetic={self.probes},{empty}")
         self.assertNotEqual(result.returncode, 0)
-        self.assertIn(f"no probe in {self.probes} matches a checkpoint of {empty}", result.stderr)
+        self.assertIn(f"synthetic: no probe in {self.probes} (or probes_unchecked beside it) matches a checkpoint "
+                      f"of {empty}", result.stderr)
+
+    def test_a_shape_with_only_refused_probes_is_drawn_without_numbers(self):
+        refused = os.path.join(self.dir.name, "refused", "probes")
+        os.makedirs(refused)
+        write_probe(os.path.join(self.dir.name, "refused", "probes_unchecked"), "load_007", 0.6, 2.0, 1.0)
+        result = run(self.prefix, f"refused={refused},{self.fabric}", f"synthetic={self.probes},{self.fabric}")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("n/a (0 checked probes)", table_rows(result.stdout, "H^c |")[0][2])
+        self.assertEqual(table_rows(result.stdout, "refused")[0][1:], ["0", "n/a", "n/a", "n/a"])
+        self.assertEqual(len(table_rows(result.stdout, "synthetic")), 1)
 
     def test_an_argument_without_its_fabric_series_stops_with_the_usage(self):
         result = run(self.prefix, f"synthetic={self.probes}")

@@ -27,6 +27,7 @@ import numpy as np  # noqa: E402
 # Column names of fabric_series.csv and the paper's symbols (as Markdown text).
 FABRICS = [("H", "H^c"), ("F", "F^c"), ("G", "G^c"), ("H_strong", "H^c-strong"), ("F_strong", "F^c-strong"),
            ("G_strong", "G^c-strong")]
+MIN_POINTS = 3  # fewer checked probes give no correlation or ratio (a shape whose probes were all refused)
 SMALL_STRAIN = 0.0101  # the small-strain panels' range of -eps11 (1%, the checkpoint lies a hair above)
 
 
@@ -64,12 +65,9 @@ def unchecked_probes(probe_folder, max_strain="inf"):
 def shape_series(probe_folder, fabric_csv, max_strain="inf"):
     probes, fabric = read_probes(probe_folder), read_fabric(fabric_csv)
     stems = sorted((s for s in probes if s in fabric and probes[s][0] <= float(max_strain)), key=lambda s: probes[s][0])
-    if not stems:
-        sys.exit(f"paper_stiffness.py: no probe in {probe_folder} matches a checkpoint of {fabric_csv}"
-                 f" at a strain up to {max_strain}")
     strain = np.array([probes[s][0] for s in stems])
     K = np.array([probes[s][1] for s in stems])
-    C = np.array([probes[s][2] for s in stems])
+    C = np.array([probes[s][2] for s in stems]).reshape(-1, 3, 3)
     return stems, strain, K, C, [fabric[s] for s in stems]
 
 
@@ -106,6 +104,11 @@ def draw_unchecked(full, small, x, y, color, label=None):
 def main(prefix, runs):
     shapes = [(label, *shape_series(*spec.split(","))) for label, spec in runs]
     unchecked = [unchecked_probes(*[v for k, v in enumerate(spec.split(",")) if k != 1]) for _, spec in runs]
+    for (label, spec), (_, _, strain, *_), (xu, *_) in zip(runs, shapes, unchecked):
+        if len(strain) == 0 and len(xu) == 0:
+            probe_folder, fabric_csv, *limit = spec.split(",")
+            sys.exit(f"paper_stiffness.py: {label}: no probe in {probe_folder} (or probes_unchecked beside it) "
+                     f"matches a checkpoint of {fabric_csv}" + (f" at a strain up to {limit[0]}" if limit else ""))
     # Fig. C123: one row per shape, the full range and the first 1% side by side.
     figure, axes = plt.subplots(len(shapes), 2, figsize=(10, 3.6 * len(shapes)), squeeze=False,
                                 gridspec_kw={"width_ratios": [2, 1]})
@@ -145,6 +148,9 @@ def main(prefix, runs):
     for name, symbol in FABRICS:
         cells = []
         for _, _, x, Kx, Cx, rows in shapes:
+            if len(x) < MIN_POINTS:
+                cells.append(f"n/a ({len(x)} checked probes)")
+                continue
             c1 = np.corrcoef(Cx[:, 0, 0] - Cx[:, 2, 2], anisotropy(rows, name, 1, 3))[0, 1]
             c2 = np.corrcoef(Cx[:, 1, 1] - Cx[:, 2, 2], anisotropy(rows, name, 2, 3))[0, 1]
             cells.append(f"{c1:.3f} / {c2:.3f}")
@@ -155,12 +161,17 @@ def main(prefix, runs):
           "| ratio to (H11 - H33)/(tr H/3), median (range, strains >= 1%) |")
     print("| --- | --- | --- | --- | --- |")
     for label, _, x, Kx, Cx, rows in shapes:
+        if len(x) < MIN_POINTS:
+            print(f"| {label} | {len(x)} | n/a | n/a | n/a |")
+            continue
         a13 = (Cx[:, 0, 0] - Cx[:, 2, 2]) / Kx
         ratio = a13 / normalized_anisotropy(rows, "H")
         late = x >= 0.01
         peak = int(np.argmax(a13))
+        late_ratio = (f"{np.median(ratio[late]):.2f} ({ratio[late].min():.2f} - {ratio[late].max():.2f})"
+                      if late.any() else "n/a (no probe from 1%)")
         print(f"| {label} | {len(x)} | {a13[-1]:.2f} at {100 * x[-1]:.0f}% | {a13[peak]:.2f} ({100 * x[peak]:.2g}%) "
-              f"| {np.median(ratio[late]):.2f} ({ratio[late].min():.2f} - {ratio[late].max():.2f}) |")
+              f"| {late_ratio} |")
 
 
 if __name__ == "__main__":
