@@ -9,7 +9,8 @@
 # checkpoint with FALLBACK_ARGS: the same force ratio (1e-4) without the verification window (the
 # failed attempt had met it again and again; the critical state's 1e-3 would leave the state nearly
 # as loaded: 228 steps at alpha = 0.625's 1%).
-# Each relax log starts with a "# settings:" line that relaxed_csvs.sh reads.
+# Each relax log starts with a "# settings:" line that relaxed_csvs.sh reads. The spheres' relaxations
+# (2026-12-03) ran with a cap of 1,000,000 and needed up to 463,000: VERIFIED_MAX_STEPS=1000000 repeats them.
 cd "$(dirname "$0")/.."  # the repository root
 s=$1
 d=runs/paper-$s
