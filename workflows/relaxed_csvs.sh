@@ -7,6 +7,10 @@
 # usage: workflows/relaxed_csvs.sh SHAPE   (spheres, ovoids-0.8, ovoids-0.625, ovoids-0.5)
 #   reads runs/paper-SHAPE/relaxed/, writes docs/paper-size/<folder>/relaxed/{fabric_series*.csv,relax_steps.csv,probes/}
 #   (<folder>: spheres or ovoids-0.8 ...); BIN=<build dir> (default build)
+# KEEP_COMMITTED=1: a run folder rebuilt in part (lost with its host) keeps the committed rows of the
+#   checkpoints it lacks in fabric_series.csv and relax_steps.csv (merge_committed_rows.py; the probe
+#   CSVs of those checkpoints stay as committed); fabric_series_correlations.csv is then over the
+#   run folder's checkpoints only (its n_points says how many).
 set -euo pipefail
 cd "$(dirname "$0")/.."  # the repository root
 shape=${1:?usage: workflows/relaxed_csvs.sh SHAPE (spheres, ovoids-0.8, ovoids-0.625, ovoids-0.5)}
@@ -24,6 +28,12 @@ compgen -G "$relaxed/probe_load_0*.h5" > /dev/null && probes=(--probe "$relaxed"
 "$bin/fabric/aniso-fabric" series --config "$config" --input "$relaxed"/load_0*.h5 "${probes[@]}" \
   --output "$work/fabric_series.h5" --log-level warn
 mkdir -p "$out"
+keep() {  # keep FILE KEY: the committed rows of checkpoints this run folder lacks (KEEP_COMMITTED=1)
+  [ "${KEEP_COMMITTED:-0}" = 1 ] || return 0
+  kept=$(/usr/bin/python3 workflows/merge_committed_rows.py "$work/$1" "$out/$1" "$2")
+  [ -z "$kept" ] || echo "relaxed_csvs.sh: $1 keeps the committed rows of $kept"
+}
+keep fabric_series.csv source
 cp "$work/fabric_series.csv" "$work/fabric_series_correlations.csv" "$out/"
 if [ ${#probes[@]} -gt 0 ]; then
   mkdir -p "$out/probes"
@@ -54,5 +64,6 @@ fi
     echo "$row"
   done
 } > "$work/relax_steps.csv"
+keep relax_steps.csv checkpoint
 cp "$work/relax_steps.csv" "$out/"  # only once every row parsed
 echo "relaxed_csvs.sh: $(ls "$relaxed"/load_0*.h5 | wc -l) relaxed checkpoints, $(ls "$relaxed"/probe_load_0*.csv 2> /dev/null | wc -l) probes, $(ls "$relaxed"/unchecked/probe_load_0*.csv 2> /dev/null | wc -l) unchecked -> $out"
