@@ -20,7 +20,7 @@ public:
   ExactSum() { limbs_.fill(0); }
 
   /// Adds one finite term; non-finite terms set a flag that makes value() return NaN. Inline: the
-  /// control update calls it twelve times a contact (dem/contact_sums.hpp).
+  /// control update calls it twelve times a contact (dem/data/contact_sums.hpp).
   void add(double term) {
     std::uint64_t bits = 0;
     std::memcpy(&bits, &term, sizeof bits);

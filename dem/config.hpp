@@ -4,6 +4,7 @@
 // range; docs/methods/dem.md lists them.
 
 #include "common/config.hpp"
+#include "dem/model/ovoid_contact.hpp"
 
 #include <cstdint>
 #include <string>
@@ -21,18 +22,12 @@ struct ParticleConfig {
   double density = 2650.0;                  ///< [kg/m^3]
 };
 
-/// How the Hertz radius of an ovoid contact is chosen (/work/shared/reference/ovoid.md).
-enum class HertzRadius : std::uint8_t {
-  halfwidth = 0, ///< R* from the particles' half-widths a_i, as Kuhn's OVAL code does (the paper's)
-  curvature = 1, ///< elliptic Hertz from both surfaces' principal curvatures at the contact
-};
-
 struct MaterialConfig {
   double shear_modulus = 29e9;   ///< G [Pa]
   double poisson_ratio = 0.15;   ///< nu
   double friction = 0.5;         ///< mu during consolidation and loading
   double friction_prepare = 0.3; ///< mu during compaction cycles
-  HertzRadius hertz_radius = HertzRadius::halfwidth;
+  model::HertzRadius hertz_radius = model::HertzRadius::halfwidth;
 };
 
 struct IntegrationConfig {
@@ -95,8 +90,5 @@ struct DemConfig {
   LoadConfig load;
   EquilibriumConfig equilibrium;
 };
-
-/// Reads every [dem] key through `reader` (which records and range-checks them).
-DemConfig read_dem_config(config::Reader& reader);
 
 } // namespace aniso::dem

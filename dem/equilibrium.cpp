@@ -1,7 +1,7 @@
 #include "dem/equilibrium.hpp"
 
 #include "common/exact_sum.hpp"
-#include "dem/rotation.hpp"
+#include "dem/model/rotation.hpp"
 
 #include <array>
 #include <cmath>
@@ -14,7 +14,7 @@ double Equilibrium::kinetic_elastic_ratio() const {
   return elastic_energy > 0 ? kinetic_energy / elastic_energy : std::numeric_limits<double>::quiet_NaN();
 }
 
-Equilibrium measure_equilibrium(const Particles& particles, const NeighborList& neighbors,
+Equilibrium measure_equilibrium(const data::Particles& particles, const data::NeighborList& neighbors,
                                 const mpi::Comm& comm) {
   enum : std::size_t {
     net_force,
@@ -36,9 +36,9 @@ Equilibrium measure_equilibrium(const Particles& particles, const NeighborList& 
   // decided by its owner alone.
   std::vector<char> touching(particles.n_owned, 0);
   for (std::size_t c = 0; c < pairs.size(); ++c) {
-    const ContactRecord& record = records[c];
+    const data::ContactRecord& record = records[c];
     if (!(record.overlap > 0)) continue;
-    const Pair& pair = pairs[c];
+    const data::Pair& pair = pairs[c];
     if (pair.i < particles.n_owned) touching[pair.i] = 1;
     if (pair.j < particles.n_owned) touching[pair.j] = 1;
     if (pair.i >= particles.n_owned) continue; // the rest counted once, by the owner of pair.i
@@ -51,8 +51,8 @@ Equilibrium measure_equilibrium(const Particles& particles, const NeighborList& 
   }
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     sums[kinetic].add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
-    sums[kinetic].add(
-        rotational_energy(particles.inertia[k], particles.orientation[k], particles.angular_velocity[k]));
+    sums[kinetic].add(model::rotational_energy(particles.inertia[k], particles.orientation[k],
+                                               particles.angular_velocity[k]));
     if (touching[k] == 0) continue;
     sums[net_force].add(particles.force[k].norm());
     sums[net_torque].add(particles.torque[k].norm());

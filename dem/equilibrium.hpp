@@ -7,11 +7,11 @@
 //   - the kinetic energy of the fluctuating motion over the elastic energy
 //     stored in the contacts;
 //   - the mean normal contact stiffness, which sets the rate of the global
-//     damping (dem/integrator.hpp, damp_velocities).
+//     damping (dem/model/integrator.hpp, damp_velocities).
 
 #include "common/mpi.hpp"
-#include "dem/neighbors.hpp"
-#include "dem/particles.hpp"
+#include "dem/data/neighbors.hpp"
+#include "dem/data/particles.hpp"
 
 #include <cstdint>
 
@@ -32,7 +32,7 @@ struct Equilibrium {
 };
 
 /// Collective. Uses the forces and contact records of the last force pass.
-Equilibrium measure_equilibrium(const Particles& particles, const NeighborList& neighbors,
+Equilibrium measure_equilibrium(const data::Particles& particles, const data::NeighborList& neighbors,
                                 const mpi::Comm& comm);
 
 } // namespace aniso::dem

@@ -8,16 +8,17 @@
 #include "common/memory.hpp"
 #include "common/output_folder.hpp"
 #include "common/stop_request.hpp"
-#include "dem/checkpoint_keys.hpp"
 #include "dem/config.hpp"
-#include "dem/hold.hpp"
-#include "dem/io.hpp"
-#include "dem/load.hpp"
-#include "dem/prepare.hpp"
-#include "dem/relax.hpp"
-#include "dem/run_folder.hpp"
-#include "dem/settings.hpp"
-#include "dem/transfer_commands.hpp"
+#include "dem/interop/transfer_commands.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/io/checkpoint_keys.hpp"
+#include "dem/io/parameters.hpp"
+#include "dem/io/run_folder.hpp"
+#include "dem/io/settings.hpp"
+#include "dem/protocol/hold.hpp"
+#include "dem/protocol/load.hpp"
+#include "dem/protocol/prepare.hpp"
+#include "dem/protocol/relax.hpp"
 
 #include <fmt/format.h>
 
@@ -29,17 +30,17 @@ int run_hold(const aniso::h5::Checkpoint& checkpoint, const std::string& input, 
              const std::string& csv, double max_drift, const aniso::Logger& logger,
              const aniso::mpi::Comm& comm) {
   using namespace aniso;
-  dem::Simulation simulation = dem::from_checkpoint(checkpoint, input, comm);
-  const dem::HoldReport report = dem::hold_fixed_cell(simulation, steps, logger);
-  const dem::HoldSample& first = report.samples.front();
-  const dem::HoldSample& last = report.samples.back();
+  dem::Simulation simulation = dem::io::from_checkpoint(checkpoint, input, comm);
+  const dem::protocol::HoldReport report = dem::protocol::hold_fixed_cell(simulation, steps, logger);
+  const dem::protocol::HoldSample& first = report.samples.front();
+  const dem::protocol::HoldSample& last = report.samples.back();
   logger->info("hold of '{}' for {} steps at fixed cell: p {:.6g} -> {:.6g} Pa (drift {:+.3e}, largest "
                "{:.3e}); q {:.6g} -> {:.6g} Pa; unbalanced-force ratio {:.2e} -> {:.2e}; kinetic/elastic "
                "{:.2e} -> {:.2e}",
                input, steps, first.mean_stress, last.mean_stress, report.final_drift(), report.largest_drift,
                first.deviatoric_stress, last.deviatoric_stress, first.unbalanced_force_ratio,
                last.unbalanced_force_ratio, first.kinetic_elastic_ratio, last.kinetic_elastic_ratio);
-  if (!csv.empty() && comm.is_root()) dem::write_hold_csv(report, csv);
+  if (!csv.empty() && comm.is_root()) dem::protocol::write_hold_csv(report, csv);
   if (max_drift > 0 && report.largest_drift > max_drift) {
     throw ConvergenceError(fmt::format("hold: p drifted by {:.3e} of its start, above --max-drift {:.3e}",
                                        report.largest_drift, max_drift));
@@ -63,13 +64,13 @@ int run_relax(const aniso::h5::Checkpoint& checkpoint, const std::string& input,
                   output));
   const fs::path folder = fs::path(output).parent_path();
   if (!folder.empty()) create_output_folder(folder.string());
-  dem::Simulation simulation = dem::from_checkpoint(checkpoint, input, comm);
+  dem::Simulation simulation = dem::io::from_checkpoint(checkpoint, input, comm);
   const auto void_ratio = [&] { return simulation.cell().volume() / simulation.solid_volume() - 1.0; };
   const double p_before = mean_stress_compression_positive(simulation.stress());
   const double e_before = void_ratio();
-  const dem::Relaxation relaxed = dem::relax_to_equilibrium(simulation, config.equilibrium,
-                                                            config.equilibrium.max_steps, logger, "relax");
-  h5::Checkpoint result = dem::to_checkpoint(simulation, config.particles.d50, checkpoint.rng_state);
+  const dem::protocol::Relaxation relaxed = dem::protocol::relax_to_equilibrium(
+      simulation, config.equilibrium, config.equilibrium.max_steps, logger, "relax");
+  h5::Checkpoint result = dem::io::to_checkpoint(simulation, config.particles.d50, checkpoint.rng_state);
   result.run_id = checkpoint.run_id;
   h5::write_checkpoint(output, result, provenance, comm);
   logger->info(
@@ -103,7 +104,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   auto* export_ = app.add_subcommand(
       "export", "a checkpoint as a LAMMPS data file (and contact dump), or as XDMF for ParaView "
                 "(particles and force chains)");
-  dem::ImportOptions import_options;
+  dem::interop::ImportOptions import_options;
   import->add_option("--input", import_options.input, "LAMMPS data file, or YADE text export")->required();
   import->add_option("--format", import_options.format, "lammps (default) or yade")
       ->check(CLI::IsMember({"lammps", "yade"}));
@@ -121,7 +122,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   import->add_option("--output", import_options.output, "checkpoint to write (HDF5; must not exist)")
       ->required();
   import->fallthrough();
-  dem::ExportOptions export_options;
+  dem::interop::ExportOptions export_options;
   export_->add_option("--input", export_options.input, "checkpoint (HDF5)")->required();
   export_->add_option("--format", export_options.format, "lammps (default) or xdmf")
       ->check(CLI::IsMember({"lammps", "xdmf"}));
@@ -160,7 +161,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const auto source = cli::load_config(options);
   config::Reader reader(source.table, source.name);
   reader.tolerate_sections({"fabric", "probe", "voxel", "lbm", "workflow"});
-  dem::DemConfig config = dem::read_dem_config(reader);
+  dem::DemConfig config = dem::io::read_dem_config(reader);
   if (cli::finish_config(reader, options, comm)) return 0;
   const Logger logger = make_logger("aniso-dem", comm, options.log_level);
 
@@ -169,7 +170,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
     checkpoint = h5::read_checkpoint(input, comm);
     logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->particles.size(),
                  checkpoint->contacts.size(), checkpoint->step);
-    dem::adopt_checkpoint_values(config, reader, *checkpoint, input);
+    dem::io::adopt_checkpoint_values(config, reader, *checkpoint, input);
   }
   require_input(!(resume && overwrite), "load: --resume continues the run in dem.output_dir and --overwrite "
                                         "replaces it; give one of them");
@@ -183,44 +184,45 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
   if (options.dry_run) return 0;
 
-  if (export_->parsed()) return dem::run_export(export_options, logger, comm);
+  if (export_->parsed()) return dem::interop::run_export(export_options, logger, comm);
   if (hold->parsed()) return run_hold(*checkpoint, input, hold_steps, hold_csv, max_drift, logger, comm);
   const std::string command = cli::join_command_line(argc, argv);
-  if (import->parsed()) return dem::run_import(import_options, config, reader, command, logger, comm);
+  if (import->parsed())
+    return dem::interop::run_import(import_options, config, reader, command, logger, comm);
   if (relax->parsed()) {
     const auto provenance = h5::make_provenance("aniso-dem relax", reader.effective_toml(), command, comm);
     return run_relax(*checkpoint, input, output, config, provenance, logger, comm);
   }
   create_output_folder(config.output_dir);
-  const dem::RunFolderLock lock(config.output_dir, comm); // one writer per folder
+  const dem::io::RunFolderLock lock(config.output_dir, comm); // one writer per folder
   if (prepare->parsed()) {
     const auto provenance = h5::make_provenance("aniso-dem prepare", reader.effective_toml(), command, comm);
-    dem::PreparedAssembly prepared = dem::prepare_assembly(config, logger, comm);
+    dem::protocol::PreparedAssembly prepared = dem::protocol::prepare_assembly(config, logger, comm);
     const std::string path = config.output_dir + "/prepared.h5";
-    h5::write_checkpoint(path,
-                         dem::to_checkpoint(*prepared.simulation, config.particles.d50, prepared.rng_state),
-                         provenance, comm);
+    h5::write_checkpoint(
+        path, dem::io::to_checkpoint(*prepared.simulation, config.particles.d50, prepared.rng_state),
+        provenance, comm);
     logger->info("wrote {}: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f}, p = {:.4g} Pa", path,
                  prepared.consolidated.void_ratio, prepared.consolidated.coordination,
                  prepared.consolidated.coordination_no_rattlers, prepared.consolidated.mean_stress);
     return 0;
   }
   const auto provenance = h5::make_provenance("aniso-dem load", reader.effective_toml(), command, comm);
-  dem::Simulation simulation = dem::from_checkpoint(*checkpoint, input, comm);
+  dem::Simulation simulation = dem::io::from_checkpoint(*checkpoint, input, comm);
   if (!resume) {
-    dem::start_loading(simulation,
-                       config); // refuses a loading that would never end: before removing anything
-    dem::clear_for_fresh_loading(config.output_dir, overwrite, input, comm);
-    if (config.load.inertial_number > dem::quasi_static_inertial_number)
+    dem::protocol::start_loading(simulation,
+                                 config); // refuses a loading that would never end: before removing anything
+    dem::io::clear_for_fresh_loading(config.output_dir, overwrite, input, comm);
+    if (config.load.inertial_number > dem::io::quasi_static_inertial_number)
       logger->warn("dem.load.inertial_number = {:g} is above {:g}: the loading is not quasi-static (inertia "
                    "carries part of the stress, the servo lags, the results depend on the rate; "
                    "docs/methods/dem.md, rate convergence)",
-                   config.load.inertial_number, dem::quasi_static_inertial_number);
+                   config.load.inertial_number, dem::io::quasi_static_inertial_number);
   }
-  const std::string run_id = resume ? checkpoint->run_id : dem::new_run_id(comm);
+  const std::string run_id = resume ? checkpoint->run_id : dem::io::new_run_id(comm);
   install_stop_handler();
-  const dem::LoadSummary summary =
-      dem::run_loading(simulation, config, config.output_dir, provenance, logger, resume, run_id);
+  const dem::protocol::LoadSummary summary =
+      dem::protocol::run_loading(simulation, config, config.output_dir, provenance, logger, resume, run_id);
   if (!summary.interrupted_checkpoint.empty()) return static_cast<int>(ExitCode::interrupted);
   logger->info("load done: strain {:.4g} in {} steps ({} of them relaxing, after increments and before "
                "checkpoints), {:.1f} s wall ({:.3g} "

@@ -2,9 +2,9 @@
 
 #include "common/exact_sum.hpp"
 #include "common/exchange.hpp"
-#include "dem/contact_sums.hpp"
+#include "dem/data/contact_sums.hpp"
 #include "dem/equilibrium.hpp"
-#include "dem/rotation.hpp"
+#include "dem/model/rotation.hpp"
 
 #include <array>
 #include <cmath>
@@ -14,20 +14,22 @@ namespace aniso::dem {
 namespace {
 
 // A contact is counted by the rank that owns its lower-id particle (pair.i).
-bool counted_here(const Particles& particles, const Pair& pair, const ContactRecord& record) {
+bool counted_here(const data::Particles& particles, const data::Pair& pair,
+                  const data::ContactRecord& record) {
   return record.overlap > 0 && pair.i < particles.n_owned;
 }
 
 } // namespace
 
-Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors,
-                    const mpi::Comm& comm) {
-  return reduce_control_measures(sum_contacts(particles, neighbors), particles, cell, comm).stress;
+Mat3 average_stress(const data::Particles& particles, const PeriodicCell& cell,
+                    const data::NeighborList& neighbors, const mpi::Comm& comm) {
+  return data::reduce_control_measures(data::sum_contacts(particles, neighbors), particles, cell, comm)
+      .stress;
 }
 
-StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell,
-                            const NeighborList& neighbors, double solid_volume, std::int64_t n_particles,
-                            const mpi::Comm& comm) {
+StateMeasures measure_state(const data::Particles& particles, const PeriodicCell& cell,
+                            const data::NeighborList& neighbors, double solid_volume,
+                            std::int64_t n_particles, const mpi::Comm& comm) {
   StateMeasures m;
   m.stress = average_stress(particles, cell, neighbors, comm);
   m.mean_stress = mean_stress_compression_positive(m.stress);
@@ -52,7 +54,7 @@ StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell
   std::array<ExactSum, 7> axes;
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     if (particles.aspect_ratio[k] == 1.0) continue;
-    const Vec3 e = particle_axis(particles.orientation[k]);
+    const Vec3 e = model::particle_axis(particles.orientation[k]);
     const std::array<double, 6> components{e.x() * e.x(), e.y() * e.y(), e.z() * e.z(),
                                            e.y() * e.z(), e.x() * e.z(), e.x() * e.y()};
     for (std::size_t c = 0; c < components.size(); ++c)

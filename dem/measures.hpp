@@ -5,8 +5,8 @@
 
 #include "common/cell.hpp"
 #include "common/mpi.hpp"
-#include "dem/neighbors.hpp"
-#include "dem/particles.hpp"
+#include "dem/data/neighbors.hpp"
+#include "dem/data/particles.hpp"
 
 namespace aniso::dem {
 
@@ -14,8 +14,8 @@ namespace aniso::dem {
 /// with d the branch vector from i to j and f_i the force on i (so compression is negative).
 /// Summed exactly (ExactSum), so the result does not depend on the order of contacts.
 /// Each contact counts on the rank that owns its lower-id particle (collective).
-Mat3 average_stress(const Particles& particles, const PeriodicCell& cell, const NeighborList& neighbors,
-                    const mpi::Comm& comm);
+Mat3 average_stress(const data::Particles& particles, const PeriodicCell& cell,
+                    const data::NeighborList& neighbors, const mpi::Comm& comm);
 
 struct StateMeasures {
   Mat3 stress = Mat3::Zero();   ///< tension positive [Pa]
@@ -35,9 +35,9 @@ struct StateMeasures {
 };
 
 /// Collective; `n_particles` and `solid_volume` are global.
-StateMeasures measure_state(const Particles& particles, const PeriodicCell& cell,
-                            const NeighborList& neighbors, double solid_volume, std::int64_t n_particles,
-                            const mpi::Comm& comm);
+StateMeasures measure_state(const data::Particles& particles, const PeriodicCell& cell,
+                            const data::NeighborList& neighbors, double solid_volume,
+                            std::int64_t n_particles, const mpi::Comm& comm);
 
 /// Inertial number I = strain rate * D50 * sqrt(density / p) (paper: quasi-static when small).
 double inertial_number(double strain_rate, double d50, double density, double mean_stress);

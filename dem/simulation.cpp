@@ -2,8 +2,8 @@
 
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
-#include "dem/forces.hpp"
-#include "dem/integrator.hpp"
+#include "dem/force_pass.hpp"
+#include "dem/model/integrator.hpp"
 
 #include <fmt/format.h>
 
@@ -14,19 +14,21 @@
 
 namespace aniso::dem {
 
-Simulation::Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings,
-                       double time, std::int64_t step, bool forces_valid, const mpi::Comm& comm)
+Simulation::Simulation(data::Particles particles, const h5::CellState& control,
+                       const SimulationSettings& settings, double time, std::int64_t step, bool forces_valid,
+                       const mpi::Comm& comm)
     : particles_(std::move(particles)), shapes_(settings.splice_angle),
       cell_(control.lengths, control.reference_lengths), control_(control), settings_(settings),
       neighbors_(settings.skin), domain_(comm), time_(time), step_(step) {
   // Every rank holds every particle here, so these are global without communication.
-  require_stable_time_step(settings_.time_step,
-                           dem::critical_time_step(particles_, settings_.density, settings_.material));
+  model::require_stable_time_step(
+      settings_.time_step, dem::model::critical_time_step(particles_, settings_.density, settings_.material));
   n_particles_ = static_cast<std::int64_t>(particles_.size());
   ExactSum solid, mass;
   for (std::size_t k = 0; k < particles_.size(); ++k) {
     mass.add(particles_.mass[k]);
-    solid.add(particle_volume(particles_.radius[k], particles_.aspect_ratio[k], settings_.splice_angle));
+    solid.add(
+        model::particle_volume(particles_.radius[k], particles_.aspect_ratio[k], settings_.splice_angle));
     shapes_.add(particles_.aspect_ratio[k]);
   }
   solid_volume_ = solid.value();
@@ -36,7 +38,7 @@ Simulation::Simulation(Particles particles, const h5::CellState& control, const 
   reach_ = 2 * max_radius + settings_.skin;
   // Deal particles round-robin, then let the first decomposition send each to the rank of its bin.
   if (comm.size() > 1) {
-    Particles dealt;
+    data::Particles dealt;
     for (std::size_t k = static_cast<std::size_t>(comm.rank()); k < particles_.size();
          k += static_cast<std::size_t>(comm.size())) {
       dealt.append(particles_, k);
@@ -57,13 +59,13 @@ void Simulation::rebuild_decomposition() {
                           particles_.position.begin() + static_cast<std::ptrdiff_t>(particles_.n_owned));
   if (domain_.needs_partition(cell_, reach_, particles_.n_owned, 1.2))
     domain_.partition(cell_, reach_, owned);
-  const std::vector<HistoryRecord> carried = halo_.migrate(particles_, cell_, domain_, neighbors_);
+  const std::vector<data::HistoryRecord> carried = halo_.migrate(particles_, cell_, domain_, neighbors_);
   halo_.exchange_ghosts(particles_, cell_, domain_);
   neighbors_.build(particles_, cell_, carried);
 }
 
 void Simulation::compute_forces(bool measure) {
-  if (measure) contact_sums_ = ContactSums{};
+  if (measure) contact_sums_ = data::ContactSums{};
   const ForcePass pass =
       compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material, settings_.time_step,
                              contact_input(), neighbors_, bodies_, measure ? &contact_sums_ : nullptr);
@@ -73,7 +75,7 @@ void Simulation::compute_forces(bool measure) {
   const bool exploded = !(pass.worst_overlap <= settings_.explosion_overlap);
   if (comm().size() > 1 ? comm().any(exploded) : exploded) {
     if (!exploded) throw NumericalError(fmt::format("step {}: the run exploded on another rank", step_ + 1));
-    const Pair& pair = neighbors_.pairs()[static_cast<std::size_t>(pass.worst_pair)];
+    const data::Pair& pair = neighbors_.pairs()[static_cast<std::size_t>(pass.worst_pair)];
     throw NumericalError(
         fmt::format("step {}: overlap of particles {} and {} is {:.3g} of the smaller radius "
                     "(limit {}): the run exploded; lower the time step fraction or the loading rate",
@@ -85,16 +87,16 @@ void Simulation::compute_forces(bool measure) {
 void Simulation::update_control() {
   // The force pass of this step summed the contacts if it knew a control update would follow;
   // otherwise (a control update outside step()) one traversal does: the same exact sums.
-  const ControlMeasures measures = reduce_control_measures(
-      contact_sums_step_ == step_ ? contact_sums_ : sum_contacts(particles_, neighbors_), particles_, cell_,
-      comm());
+  const data::ControlMeasures measures = data::reduce_control_measures(
+      contact_sums_step_ == step_ ? contact_sums_ : data::sum_contacts(particles_, neighbors_), particles_,
+      cell_, comm());
   stress_ = measures.stress;
   if (!std::isfinite(stress_.sum())) {
     throw NumericalError(fmt::format("step {}: the stress is not finite: the run exploded", step_));
   }
   if (watch_equilibrium_ || settings_.global_damping > 0) update_equilibrium();
   const double interval = static_cast<double>(settings_.control_interval) * settings_.time_step;
-  update_strain_rates(control_, stress_, measures.stiffness, interval, settings_.servo);
+  model::update_strain_rates(control_, stress_, measures.stiffness, interval, settings_.servo);
 }
 
 void Simulation::update_equilibrium() {
@@ -108,11 +110,11 @@ void Simulation::watch_equilibrium(bool on) {
 }
 
 double Simulation::critical_time_step() const {
-  return comm().min(dem::critical_time_step(particles_, settings_.density, settings_.material));
+  return comm().min(dem::model::critical_time_step(particles_, settings_.density, settings_.material));
 }
 
 void Simulation::set_time_step(double time_step) {
-  require_stable_time_step(time_step, critical_time_step());
+  model::require_stable_time_step(time_step, critical_time_step());
   settings_.time_step = time_step;
 }
 
@@ -136,10 +138,10 @@ void Simulation::update_damping_rate() {
 void Simulation::step() {
   const double dt = settings_.time_step;
   const double damping_factor = std::exp(-0.5 * dt * damping_rate_);
-  kick(particles_, 0.5 * dt);
-  if (damping_rate_ > 0) damp_velocities(particles_, damping_factor);
-  drift(particles_, cell_, control_.strain_rate, dt);
-  ListMotion motion = neighbors_.measure_motion(particles_, cell_);
+  model::kick(particles_, 0.5 * dt);
+  if (damping_rate_ > 0) model::damp_velocities(particles_, damping_factor);
+  model::drift(particles_, cell_, control_.strain_rate, dt);
+  data::ListMotion motion = neighbors_.measure_motion(particles_, cell_);
   if (comm().size() > 1) {
     const std::array<double, 3> local{motion.separation, motion.gap, motion.step_gap};
     const std::vector<double> global = comm().max(local);
@@ -152,8 +154,8 @@ void Simulation::step() {
     neighbors_.set_motion(motion);
   }
   compute_forces((step_ + 1) % settings_.control_interval == 0);
-  kick(particles_, 0.5 * dt);
-  if (damping_rate_ > 0) damp_velocities(particles_, damping_factor);
+  model::kick(particles_, 0.5 * dt);
+  if (damping_rate_ > 0) model::damp_velocities(particles_, damping_factor);
   time_ += dt;
   ++step_;
   if (step_ % settings_.control_interval == 0) update_control();
@@ -174,13 +176,14 @@ double Simulation::geometric_overlap(std::uint32_t i, std::uint32_t j, const Vec
   const double radius_sum = particles_.radius[i] + particles_.radius[j];
   if (d.squaredNorm() >= radius_sum * radius_sum) return radius_sum - d.norm();
   if (particles_.aspect_ratio[i] == 1.0 && particles_.aspect_ratio[j] == 1.0) return radius_sum - d.norm();
-  PairProperties properties;
+  model::PairProperties properties;
   properties.effective_radius = particles_.radius[i] * particles_.radius[j] / radius_sum;
-  const ConvexBody a =
+  const model::ConvexBody a =
       shapes_.body(particles_.radius[i], particles_.aspect_ratio[i], particles_.orientation[i]);
-  const ConvexBody b =
+  const model::ConvexBody b =
       shapes_.body(particles_.radius[j], particles_.aspect_ratio[j], particles_.orientation[j]);
-  return ovoid_pair_geometry(a, b, d, guess.isZero(0.0) ? d : guess, properties, contact_input(), false)
+  return model::ovoid_pair_geometry(a, b, d, guess.isZero(0.0) ? d : guess, properties,
+                                    settings_.hertz_radius, false)
       .contact.overlap;
 }
 
@@ -229,10 +232,10 @@ void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::st
         PeriodicCell::minimum_image_of_wrapped(contacts.point[c] - particles_.position[i], lengths);
     record.force_on_i = contacts.force[c];
     const double effective_radius = restored_hertz_radius(i, j, record);
-    record.normal_force =
-        hertz_normal_force(contact_modulus(settings_.material), effective_radius, record.overlap);
+    record.normal_force = model::hertz_normal_force(model::contact_modulus(settings_.material),
+                                                    effective_radius, record.overlap);
     record.tangential_stiffness =
-        mindlin_tangential_stiffness(settings_.material, effective_radius, record.overlap);
+        model::mindlin_tangential_stiffness(settings_.material, effective_radius, record.overlap);
     auto& history = neighbors_.history()[static_cast<std::size_t>(k)];
     history.tangential_force = contacts.tangential_force[c];
     history.sliding = contacts.sliding[c] != 0;
@@ -252,21 +255,22 @@ void Simulation::restore_contacts(const h5::ContactRows& contacts, const std::st
 }
 
 double Simulation::restored_hertz_radius(std::uint32_t i, std::uint32_t j,
-                                         const ContactRecord& record) const {
+                                         const data::ContactRecord& record) const {
   const double radius_i = particles_.radius[i], radius_j = particles_.radius[j];
   const double halfwidth = radius_i * radius_j / (radius_i + radius_j);
   const bool spheres = particles_.aspect_ratio[i] == 1.0 && particles_.aspect_ratio[j] == 1.0;
-  if (spheres || settings_.hertz_radius == HertzRadius::halfwidth) return halfwidth;
-  PairProperties properties;
+  if (spheres || settings_.hertz_radius == model::HertzRadius::halfwidth) return halfwidth;
+  model::PairProperties properties;
   properties.effective_radius = halfwidth;
-  const ConvexBody a = shapes_.body(radius_i, particles_.aspect_ratio[i], particles_.orientation[i]);
-  const ConvexBody b = shapes_.body(radius_j, particles_.aspect_ratio[j], particles_.orientation[j]);
-  return ovoid_pair_geometry(a, b, record.branch, record.normal, properties, contact_input(), false)
+  const model::ConvexBody a = shapes_.body(radius_i, particles_.aspect_ratio[i], particles_.orientation[i]);
+  const model::ConvexBody b = shapes_.body(radius_j, particles_.aspect_ratio[j], particles_.orientation[j]);
+  return model::ovoid_pair_geometry(a, b, record.branch, record.normal, properties, settings_.hertz_radius,
+                                    false)
       .hertz_radius;
 }
 
 double Simulation::servo_error() const {
-  return dem::servo_error(control_, stress_);
+  return dem::model::servo_error(control_, stress_);
 }
 
 void Simulation::set_control(const h5::CellState& control) {

@@ -5,17 +5,17 @@
 
 #include "common/cell.hpp"
 #include "common/h5/checkpoint.hpp"
-#include "dem/cell_control.hpp"
 #include "dem/config.hpp"
-#include "dem/contact_law.hpp"
-#include "dem/domain.hpp"
+#include "dem/data/neighbors.hpp"
+#include "dem/data/particles.hpp"
 #include "dem/equilibrium.hpp"
-#include "dem/forces.hpp"
-#include "dem/halo.hpp"
+#include "dem/force_pass.hpp"
 #include "dem/measures.hpp"
-#include "dem/neighbors.hpp"
-#include "dem/particle_shape.hpp"
-#include "dem/particles.hpp"
+#include "dem/model/cell_control.hpp"
+#include "dem/model/contact_law.hpp"
+#include "dem/model/particle_shape.hpp"
+#include "dem/parallel/domain.hpp"
+#include "dem/parallel/halo.hpp"
 
 #include <cstdint>
 #include <string>
@@ -23,18 +23,18 @@
 namespace aniso::dem {
 
 struct SimulationSettings {
-  ContactMaterial material;
+  model::ContactMaterial material;
   double density = 2650;              ///< [kg/m^3]
   double time_step = 0;               ///< [s]; checked against the Rayleigh step
   double skin = 0;                    ///< neighbour-list skin [m]
   std::int64_t control_interval = 10; ///< steps between stress measurements and servo updates
-  ServoSettings servo;
+  model::ServoSettings servo;
   /// Global damping of the fluctuating motion as a fraction of critical for the mean
   /// particle on the mean contact stiffness: gamma = 2 ratio sqrt(k_n / m) (docs/methods/dem.md).
   double global_damping = 0;
   double explosion_overlap = 0.05; ///< stop when an overlap exceeds this fraction of the smaller radius
   double splice_angle = 0.7853981633974483; ///< ovoid splice angle beta [rad], assembly-wide
-  HertzRadius hertz_radius = HertzRadius::halfwidth;
+  model::HertzRadius hertz_radius = model::HertzRadius::halfwidth;
 };
 
 class Simulation {
@@ -43,7 +43,7 @@ public:
   /// cell state; decomposes the cell over `comm`, keeps this rank's particles and builds the
   /// contact list (collective). If `forces_valid` is false the initial forces are computed here;
   /// if true (a restart) the caller then calls restore_contacts() and restore_stress().
-  Simulation(Particles particles, const h5::CellState& control, const SimulationSettings& settings,
+  Simulation(data::Particles particles, const h5::CellState& control, const SimulationSettings& settings,
              double time, std::int64_t step, bool forces_valid, const mpi::Comm& comm);
 
   /// One velocity-Verlet step: half kick, drift and cell strain, contact list refresh if
@@ -59,17 +59,17 @@ public:
   /// Recomputes the stress from restored contact records (after a restart; collective).
   void restore_stress();
   [[nodiscard]] const mpi::Comm& comm() const { return domain_.comm(); }
-  [[nodiscard]] const Domain& domain() const { return domain_; }
+  [[nodiscard]] const parallel::Domain& domain() const { return domain_; }
   /// Number of particles on all ranks.
   [[nodiscard]] std::int64_t n_particles() const { return n_particles_; }
   [[nodiscard]] const Mat3& stress() const { return stress_; } ///< at the last control update
   [[nodiscard]] double servo_error() const;
 
-  [[nodiscard]] const Particles& particles() const { return particles_; }
-  [[nodiscard]] Particles& particles() { return particles_; }
+  [[nodiscard]] const data::Particles& particles() const { return particles_; }
+  [[nodiscard]] data::Particles& particles() { return particles_; }
   [[nodiscard]] const PeriodicCell& cell() const { return cell_; }
-  [[nodiscard]] const NeighborList& neighbors() const { return neighbors_; }
-  [[nodiscard]] NeighborList& neighbors() { return neighbors_; }
+  [[nodiscard]] const data::NeighborList& neighbors() const { return neighbors_; }
+  [[nodiscard]] data::NeighborList& neighbors() { return neighbors_; }
   [[nodiscard]] const h5::CellState& control() const { return control_; }
   /// Changes the controller (mode, targets) from the next step on; rates are recomputed now.
   void set_control(const h5::CellState& control);
@@ -112,28 +112,28 @@ public:
   [[nodiscard]] h5::CellState cell_state() const;
 
   /// The shapes of this assembly's particles.
-  [[nodiscard]] const ShapeTable& shapes() const { return shapes_; }
+  [[nodiscard]] const model::ShapeTable& shapes() const { return shapes_; }
   [[nodiscard]] ContactInput contact_input() const { return {&shapes_, settings_.hertz_radius}; }
 
 private:
   /// The force pass; with `measure`, it also fills contact_sums_ for the control update that follows.
   void compute_forces(bool measure = false);
   [[nodiscard]] double restored_hertz_radius(std::uint32_t i, std::uint32_t j,
-                                             const ContactRecord& record) const;
+                                             const data::ContactRecord& record) const;
   void update_control();
   void update_equilibrium();
   void update_damping_rate();
   void rebuild_decomposition();
 
-  Particles particles_;
-  ShapeTable shapes_;
-  std::vector<ConvexBody> bodies_; ///< scratch of the force pass: world-frame bodies
+  data::Particles particles_;
+  model::ShapeTable shapes_;
+  std::vector<model::ConvexBody> bodies_; ///< scratch of the force pass: world-frame bodies
   PeriodicCell cell_;
   h5::CellState control_;
   SimulationSettings settings_;
-  NeighborList neighbors_;
-  Domain domain_;
-  Halo halo_;
+  data::NeighborList neighbors_;
+  parallel::Domain domain_;
+  parallel::Halo halo_;
   double reach_ = 0; ///< largest interaction range, 2 R_max + skin
   std::int64_t n_particles_ = 0;
   Mat3 stress_ = Mat3::Zero();
@@ -144,7 +144,7 @@ private:
   double damping_rate_ = 0; ///< gamma of the global damping [1/s]
   Equilibrium equilibrium_;
   bool watch_equilibrium_ = false;
-  ContactSums contact_sums_;            ///< this rank's contact sums of the last measuring force pass
+  data::ContactSums contact_sums_;      ///< this rank's contact sums of the last measuring force pass
   std::int64_t contact_sums_step_ = -1; ///< the step whose forces they sum (-1: none)
 };
 

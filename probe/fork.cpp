@@ -1,8 +1,8 @@
 #include "probe/fork.hpp"
 
 #include "common/error.hpp"
-#include "dem/io.hpp"
-#include "dem/settings.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/io/settings.hpp"
 #include "dem/simulation.hpp"
 
 #include <fmt/format.h>
@@ -92,14 +92,14 @@ Mat3 mean_of(const std::vector<Mat3>& samples) {
 ForkResult run_fork(const h5::Checkpoint& checkpoint, const std::string& path, int index,
                     const ProbeConfig& config, const mpi::Comm& comm, const Logger& logger) {
   const ForkSpec spec = fork_spec(index);
-  dem::Simulation simulation = dem::from_checkpoint(checkpoint, path, comm);
+  dem::Simulation simulation = dem::io::from_checkpoint(checkpoint, path, comm);
   const double p0 = mean_stress_compression_positive(simulation.stress());
   require_file(p0 > 0, fmt::format("checkpoint '{}': mean stress {:.4g} Pa is not compressive; the probe "
                                    "needs a confined assembly",
                                    path, p0));
   const double d50 = h5::parameter(checkpoint, "d50", path);
-  const double rate =
-      dem::strain_rate_for_inertial_number(config.inertial_number, d50, simulation.settings().density, p0);
+  const double rate = dem::io::strain_rate_for_inertial_number(config.inertial_number, d50,
+                                                               simulation.settings().density, p0);
   const double dt = simulation.settings().time_step;
   // Every fork, the reference included, takes the same steps so that their samples line up.
   const auto half_steps =

@@ -9,8 +9,8 @@
 #include "common/rng.hpp"
 #include "common/tensor.hpp"
 #include "dem/config.hpp"
-#include "dem/prepare.hpp"
-#include "dem/settings.hpp"
+#include "dem/io/settings.hpp"
+#include "dem/protocol/prepare.hpp"
 #include "dem/simulation.hpp"
 
 #include <gtest/gtest.h>
@@ -38,13 +38,13 @@ inline DemConfig small_config(std::int64_t count = 150, std::uint64_t seed = 7) 
 /// Sparse random arrangement without overlaps (preparation friction and damping).
 inline Simulation loose_assembly(const DemConfig& config) {
   RandomStream sizes(config.seed, 0), placement(config.seed, 1);
-  return sparse_assembly(config, sizes, placement, mpi::Comm(MPI_COMM_SELF));
+  return protocol::sparse_assembly(config, sizes, placement, mpi::Comm(MPI_COMM_SELF));
 }
 
 /// Isotropic compaction rate [1/s] for an inertial number at the confining pressure.
 inline double compaction_rate(const DemConfig& config, double inertial_number) {
-  return strain_rate_for_inertial_number(inertial_number, config.particles.d50, config.particles.density,
-                                         config.prepare.confining_pressure);
+  return io::strain_rate_for_inertial_number(inertial_number, config.particles.d50, config.particles.density,
+                                             config.prepare.confining_pressure);
 }
 
 inline h5::CellState isotropic_rate(const Simulation& simulation, double rate) {
@@ -76,7 +76,8 @@ inline Simulation prepared_assembly(const DemConfig& config) {
   DemConfig one_cycle = config;
   one_cycle.prepare.cycles = 1;
   one_cycle.prepare.void_ratio_tolerance = 1.0; // one fast cycle: any density will do
-  PreparedAssembly prepared = prepare_assembly(one_cycle, make_silent_logger(), mpi::Comm(MPI_COMM_SELF));
+  protocol::PreparedAssembly prepared =
+      protocol::prepare_assembly(one_cycle, make_silent_logger(), mpi::Comm(MPI_COMM_SELF));
   return std::move(*prepared.simulation);
 }
 

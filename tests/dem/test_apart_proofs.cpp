@@ -5,11 +5,11 @@
 // every touching pair (sphere-ovoid ones included) has the overlap of the narrow phase alone.
 #include "common/cell.hpp"
 #include "common/rng.hpp"
-#include "dem/forces.hpp"
-#include "dem/integrator.hpp"
-#include "dem/neighbors.hpp"
-#include "dem/particle_shape.hpp"
-#include "dem/particles.hpp"
+#include "dem/data/neighbors.hpp"
+#include "dem/data/particles.hpp"
+#include "dem/force_pass.hpp"
+#include "dem/model/integrator.hpp"
+#include "dem/model/particle_shape.hpp"
 #include "tests/dem/paper_sizes.hpp"
 
 #include <gtest/gtest.h>
@@ -28,6 +28,8 @@ using aniso::Quat;
 using aniso::RandomStream;
 using aniso::Vec3;
 using namespace aniso::dem;
+using namespace aniso::dem::data;
+using namespace aniso::dem::model;
 
 using namespace aniso::dem::test;
 constexpr double kSplice = std::numbers::pi / 4;

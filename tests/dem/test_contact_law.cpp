@@ -1,7 +1,7 @@
-// Tests of the Hertz-Mindlin contact law (dem/contact_law.hpp) with the
+// Tests of the Hertz-Mindlin contact law (dem/model/contact_law.hpp) with the
 // paper's material: G = 29 GPa, nu = 0.15, mu = 0.5, rho = 2650 kg/m^3 and
 // particle diameters 0.075-0.28 mm.
-#include "dem/contact_law.hpp"
+#include "dem/model/contact_law.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@ namespace {
 
 using aniso::Vec3;
 using namespace aniso::dem;
+using namespace aniso::dem::model;
 
 constexpr double kDensity = 2650.0;
 constexpr double kSmallDiameter = 0.075e-3;

@@ -4,7 +4,7 @@
 // Rayleigh step. Velocity Verlet is symplectic, so the total energy
 // (kinetic + Hertz potential (2/5) F_n delta) must not drift; the sum of
 // pairwise forces is zero, so the momentum is kept to round-off.
-#include "dem/settings.hpp"
+#include "dem/io/settings.hpp"
 #include "dem/simulation.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
@@ -19,6 +19,8 @@ namespace {
 using aniso::RandomStream;
 using aniso::Vec3;
 using namespace aniso::dem;
+using namespace aniso::dem::data;
+using namespace aniso::dem::io;
 
 double total_energy(const Simulation& simulation) {
   const StateMeasures m = simulation.measure();

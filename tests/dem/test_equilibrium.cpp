@@ -1,16 +1,16 @@
 // The equilibrium measures (dem/equilibrium.hpp) on hand-made contacts with
 // known net forces, the global damping of the fluctuating motion, the
-// relaxation to equilibrium (dem/relax.hpp) and the fixed-cell hold
-// (dem/hold.hpp) of a small dense assembly.
+// relaxation to equilibrium (dem/protocol/relax.hpp) and the fixed-cell hold
+// (dem/protocol/hold.hpp) of a small dense assembly.
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
-#include "dem/history.hpp"
-#include "dem/hold.hpp"
-#include "dem/integrator.hpp"
-#include "dem/io.hpp"
-#include "dem/load.hpp"
-#include "dem/relax.hpp"
-#include "dem/settings.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/io/history.hpp"
+#include "dem/io/settings.hpp"
+#include "dem/model/integrator.hpp"
+#include "dem/protocol/hold.hpp"
+#include "dem/protocol/load.hpp"
+#include "dem/protocol/relax.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -24,6 +24,9 @@ namespace {
 using aniso::Vec3;
 using namespace aniso;
 using namespace aniso::dem;
+using namespace aniso::dem::data;
+using namespace aniso::dem::io;
+using namespace aniso::dem::protocol;
 
 constexpr double radius = 0.1e-3;
 

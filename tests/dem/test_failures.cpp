@@ -8,10 +8,11 @@
 #include "common/h5/checkpoint.hpp"
 #include "common/mpi.hpp"
 #include "dem/config.hpp"
-#include "dem/contact_law.hpp"
-#include "dem/integrator.hpp"
-#include "dem/io.hpp"
-#include "dem/settings.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/io/parameters.hpp"
+#include "dem/io/settings.hpp"
+#include "dem/model/contact_law.hpp"
+#include "dem/model/integrator.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
 #include <fmt/format.h>
@@ -25,6 +26,9 @@ namespace {
 
 using namespace aniso;
 using namespace aniso::dem;
+using namespace aniso::dem::data;
+using namespace aniso::dem::io;
+using namespace aniso::dem::model;
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

@@ -1,4 +1,4 @@
-// Tests of the binned Verlet neighbour list (dem/neighbors.hpp) against the
+// Tests of the binned Verlet neighbour list (dem/data/neighbors.hpp) against the
 // brute-force pair search, on random periodic configurations of the paper's
 // size range (radii 0.0375-0.14 mm) in a cube and in a cell as elongated as
 // the minimum-image rule allows; the rebuild criterion under particle motion
@@ -6,9 +6,9 @@
 #include "common/cell.hpp"
 #include "common/error.hpp"
 #include "common/rng.hpp"
-#include "dem/integrator.hpp"
-#include "dem/neighbors.hpp"
-#include "dem/particles.hpp"
+#include "dem/data/neighbors.hpp"
+#include "dem/data/particles.hpp"
+#include "dem/model/integrator.hpp"
 #include "tests/dem/paper_sizes.hpp"
 
 #include <gtest/gtest.h>
@@ -26,6 +26,8 @@ using aniso::PeriodicCell;
 using aniso::RandomStream;
 using aniso::Vec3;
 using namespace aniso::dem;
+using namespace aniso::dem::data;
+using namespace aniso::dem::model;
 
 using namespace aniso::dem::test;
 

@@ -1,13 +1,13 @@
-// The ovoid narrow phase (dem/ovoid_contact.hpp) against references that share none of its
+// The ovoid narrow phase (dem/model/ovoid_contact.hpp) against references that share none of its
 // code: the shape's own support function, closest point and normals (common/shape/ovoid.hpp),
 // and a brute-force search over directions (a dense spherical grid, then golden-section
 // refinement) for the minimum of the support gap. 10,000 random pairs of the paper's shapes
 // with overlaps up to 1% of D, and the degenerate configurations named in the issue.
 #include "common/rng.hpp"
 #include "common/shape/ovoid.hpp"
-#include "dem/contact_law.hpp"
-#include "dem/ovoid_contact.hpp"
-#include "dem/particle_shape.hpp"
+#include "dem/model/contact_law.hpp"
+#include "dem/model/ovoid_contact.hpp"
+#include "dem/model/particle_shape.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,9 +24,9 @@ using aniso::OvoidShape;
 using aniso::Quat;
 using aniso::RandomStream;
 using aniso::Vec3;
-using aniso::dem::ContactGeometry;
-using aniso::dem::ConvexBody;
-using aniso::dem::ShapeTable;
+using aniso::dem::model::ContactGeometry;
+using aniso::dem::model::ConvexBody;
+using aniso::dem::model::ShapeTable;
 constexpr double pi = std::numbers::pi;
 constexpr double beta = pi / 4.0;
 
@@ -154,11 +154,11 @@ TEST(OvoidContact, RandomPairsAgreeWithBruteForceAndTheShapeLibrary) {
     Vec3 d = (reference_support(a, u) + reference_support(b, -u) - target) * u;
     // Slide B along the contact normal until the overlap is the target.
     for (int adjust = 0; adjust < 4; ++adjust) {
-      const ContactGeometry trial = aniso::dem::convex_contact(a.body, b.body, d, d, false);
+      const ContactGeometry trial = aniso::dem::model::convex_contact(a.body, b.body, d, d, false);
       d += (trial.overlap - target) * trial.normal;
     }
 
-    const ContactGeometry g = aniso::dem::convex_contact(a.body, b.body, d, d, false);
+    const ContactGeometry g = aniso::dem::model::convex_contact(a.body, b.body, d, d, false);
     ASSERT_TRUE(g.converged) << "pair " << pair;
     max_iterations = std::max(max_iterations, g.iterations);
     const BruteForce reference = brute_force_contact(a, b, d);
@@ -204,7 +204,7 @@ void expect_contact(double alpha_a, const Quat& orientation_a, double alpha_b, c
   table.add(alpha_a);
   table.add(alpha_b);
   const ConvexBody a = table.body(1.0, alpha_a, orientation_a), b = table.body(1.0, alpha_b, orientation_b);
-  const ContactGeometry g = aniso::dem::convex_contact(a, b, d, guess, false);
+  const ContactGeometry g = aniso::dem::model::convex_contact(a, b, d, guess, false);
   EXPECT_TRUE(g.converged);
   EXPECT_NEAR(g.overlap, overlap, 1e-13);
   EXPECT_LT(angle_between(g.normal, normal), angle_tolerance) << g.normal.transpose();
@@ -231,14 +231,14 @@ TEST(OvoidContact, RelativePrincipalRadiiAtTheEquator) {
   table.add(0.5);
   const ConvexBody a = table.body(1.0, 0.5, Quat::Identity());
   const ContactGeometry g =
-      aniso::dem::convex_contact(a, a, Vec3(2.0 - overlap, 0, 0), Vec3::UnitX(), false, true);
+      aniso::dem::model::convex_contact(a, a, Vec3(2.0 - overlap, 0, 0), Vec3::UnitX(), false, true);
   EXPECT_NEAR(g.principal_radii[0], 0.5 * a.tube_radius, 1e-12);
   EXPECT_NEAR(g.principal_radii[1], 0.5, 1e-12);
   // Spheres of radii 1 and 2: R' = R'' = 2/3.
   table.add(1.0);
-  const ContactGeometry s = aniso::dem::convex_contact(table.body(1.0, 1.0, Quat::Identity()),
-                                                       table.body(2.0, 1.0, Quat::Identity()),
-                                                       Vec3(0, 3.0 - overlap, 0), Vec3::UnitY(), false, true);
+  const ContactGeometry s = aniso::dem::model::convex_contact(
+      table.body(1.0, 1.0, Quat::Identity()), table.body(2.0, 1.0, Quat::Identity()),
+      Vec3(0, 3.0 - overlap, 0), Vec3::UnitY(), false, true);
   EXPECT_NEAR(s.principal_radii[0], 2.0 / 3.0, 1e-12);
   EXPECT_NEAR(s.principal_radii[1], 2.0 / 3.0, 1e-12);
 }
@@ -262,11 +262,11 @@ TEST(OvoidSupport, RadiusTensorIsTheDerivativeOfTheSupportPoint) {
     const Vec3 helper =
         n.cross(direction(std::acos(stream.uniform(-1.0, 1.0)), stream.uniform(0.0, 2.0 * pi)));
     const Vec3 v = helper.normalized();
-    const aniso::dem::Support s = aniso::dem::support(body, n);
-    const Vec3 difference = (aniso::dem::support(body, (n + step * v).normalized()).point -
-                             aniso::dem::support(body, (n - step * v).normalized()).point) /
+    const aniso::dem::model::Support s = aniso::dem::model::support(body, n);
+    const Vec3 difference = (aniso::dem::model::support(body, (n + step * v).normalized()).point -
+                             aniso::dem::model::support(body, (n - step * v).normalized()).point) /
                             (2.0 * step);
-    const Vec3 tensor_times = aniso::dem::radius_tensor_times(s, v);
+    const Vec3 tensor_times = aniso::dem::model::radius_tensor_times(s, v);
     worst = std::max(worst, (difference - tensor_times).norm() / body.bounding_radius);
     ++n_checked;
     n_band += s.piece == 0 ? 1 : 0;
@@ -291,20 +291,21 @@ TEST(OvoidContact, RelativePrincipalRadiiAgreeWithAnExplicitBasis) {
         table.body(stream.uniform(0.5, 1.0), aspect_ratios[static_cast<std::size_t>((pair / 4) % 4)],
                    random_rotation(stream));
     const Vec3 u = direction(std::acos(stream.uniform(-1.0, 1.0)), stream.uniform(0.0, 2.0 * pi));
-    const Vec3 d = (aniso::dem::support_value(a, u) + aniso::dem::support_value(b, -u) - 1e-3) * u;
-    const ContactGeometry g = aniso::dem::convex_contact(a, b, d, d, false, true);
+    const Vec3 d =
+        (aniso::dem::model::support_value(a, u) + aniso::dem::model::support_value(b, -u) - 1e-3) * u;
+    const ContactGeometry g = aniso::dem::model::convex_contact(a, b, d, d, false, true);
     const Vec3 t0 = g.normal.unitOrthogonal(), t1 = g.normal.cross(t0);
-    const auto plane_matrix = [&](const aniso::dem::Support& s) {
+    const auto plane_matrix = [&](const aniso::dem::model::Support& s) {
       Eigen::Matrix2d m;
       for (int c = 0; c < 2; ++c) {
-        const Vec3 column = aniso::dem::radius_tensor_times(s, c == 0 ? t0 : t1);
+        const Vec3 column = aniso::dem::model::radius_tensor_times(s, c == 0 ? t0 : t1);
         m(0, c) = column.dot(t0);
         m(1, c) = column.dot(t1);
       }
       return m;
     };
-    const Eigen::Matrix2d curvature = plane_matrix(aniso::dem::support(a, g.normal)).inverse() +
-                                      plane_matrix(aniso::dem::support(b, -g.normal)).inverse();
+    const Eigen::Matrix2d curvature = plane_matrix(aniso::dem::model::support(a, g.normal)).inverse() +
+                                      plane_matrix(aniso::dem::model::support(b, -g.normal)).inverse();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(curvature);
     const double explicit_small = 1.0 / solver.eigenvalues()[1],
                  explicit_large = 1.0 / solver.eigenvalues()[0];
@@ -340,7 +341,7 @@ TEST(OvoidContact, SeparatedPairsReturnAtOnceWhenAsked) {
   ShapeTable table(beta);
   table.add(0.5);
   const ConvexBody a = table.body(1.0, 0.5, Quat::Identity());
-  const ContactGeometry g = aniso::dem::convex_contact(a, a, Vec3(2.1, 0, 0), Vec3::UnitX(), true);
+  const ContactGeometry g = aniso::dem::model::convex_contact(a, a, Vec3(2.1, 0, 0), Vec3::UnitX(), true);
   EXPECT_EQ(g.iterations, 0);
   EXPECT_NEAR(g.overlap, -0.1, 1e-15);
 }
@@ -354,8 +355,8 @@ TEST(OvoidContact, AspectRatioOneIsTheSphere) {
     const Vec3 u = direction(std::acos(stream.uniform(-1.0, 1.0)), stream.uniform(0.0, 2.0 * pi));
     const Vec3 d = (ra + rb - 1e-3) * u;
     const ContactGeometry g =
-        aniso::dem::convex_contact(table.body(ra, 1.0, random_rotation(stream)),
-                                   table.body(rb, 1.0, random_rotation(stream)), d, d, false);
+        aniso::dem::model::convex_contact(table.body(ra, 1.0, random_rotation(stream)),
+                                          table.body(rb, 1.0, random_rotation(stream)), d, d, false);
     EXPECT_NEAR(g.overlap, ra + rb - d.norm(), 1e-15);
     EXPECT_LT(angle_between(g.normal, u), 1e-15);
     EXPECT_NEAR((g.point - (ra - 0.5e-3) * u).norm(), 0.0, 1e-15);
@@ -364,7 +365,7 @@ TEST(OvoidContact, AspectRatioOneIsTheSphere) {
 
 TEST(OvoidContact, NearlySphericalOvoidGivesTheSphereForce) {
   // alpha -> 1: the ovoid's contact and Hertz force converge to the sphere's.
-  const aniso::dem::ContactMaterial material;
+  const aniso::dem::model::ContactMaterial material;
   for (double alpha : {1.0 - 1e-6, 1.0 - 1e-9}) {
     ShapeTable table(beta);
     table.add(alpha);
@@ -372,18 +373,18 @@ TEST(OvoidContact, NearlySphericalOvoidGivesTheSphereForce) {
     const Quat q(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
     const Vec3 d = Vec3(0.3, -0.5, 0.8).normalized() * (2.0 - 1e-3);
     const ContactGeometry ovoid =
-        aniso::dem::convex_contact(table.body(1.0, alpha, q), table.body(1.0, 1.0, q), d, d, false);
+        aniso::dem::model::convex_contact(table.body(1.0, alpha, q), table.body(1.0, 1.0, q), d, d, false);
     const double sphere_overlap = 2.0 - d.norm();
     EXPECT_NEAR(ovoid.overlap, sphere_overlap, 3.0 * (1.0 - alpha));
-    const double e_star = aniso::dem::contact_modulus(material);
-    EXPECT_NEAR(aniso::dem::hertz_normal_force(e_star, 0.5, ovoid.overlap) /
-                    aniso::dem::hertz_normal_force(e_star, 0.5, sphere_overlap),
+    const double e_star = aniso::dem::model::contact_modulus(material);
+    EXPECT_NEAR(aniso::dem::model::hertz_normal_force(e_star, 0.5, ovoid.overlap) /
+                    aniso::dem::model::hertz_normal_force(e_star, 0.5, sphere_overlap),
                 1.0, 1e4 * (1.0 - alpha));
   }
 }
 
 TEST(EllipticHertz, CircleLimitAndExactTheory) {
-  EXPECT_NEAR(aniso::dem::elliptic_hertz_radius(0.3, 0.3), 0.3, 1e-14);
+  EXPECT_NEAR(aniso::dem::model::elliptic_hertz_radius(0.3, 0.3), 0.3, 1e-14);
   // Independent evaluation of Johnson's exact relations at ratios between table nodes.
   for (const double ratio : {1.7, 5.3, 41.0}) {
     double low = 1e-6, high = 1.0 - 1e-15;
@@ -399,7 +400,8 @@ TEST(EllipticHertz, CircleLimitAndExactTheory) {
     const double k = std::comp_ellint_1(e), big_e = std::comp_ellint_2(e);
     const double radius_large = 2.0, curvature_a = 0.5 / radius_large;
     const double expected = pi * pi * (k - big_e) / (4.0 * k * k * k * e * e) / curvature_a;
-    EXPECT_NEAR(aniso::dem::elliptic_hertz_radius(radius_large / ratio, radius_large) / expected, 1.0, 1e-5)
+    EXPECT_NEAR(aniso::dem::model::elliptic_hertz_radius(radius_large / ratio, radius_large) / expected, 1.0,
+                1e-5)
         << "ratio " << ratio;
     // Between the geometric mean of the radii (small ellipticity) and the larger radius.
     EXPECT_GT(expected, std::sqrt(radius_large * radius_large / ratio) * 0.99);

@@ -1,11 +1,11 @@
-// Rigid-body dynamics of ovoids: torque-free rotation (dem/rotation.hpp) conserves energy and
+// Rigid-body dynamics of ovoids: torque-free rotation (dem/model/rotation.hpp) conserves energy and
 // angular momentum, and oblique collisions of two ovoids through the whole time step conserve
 // linear and angular momentum (with friction) and energy (without friction and damping).
 #include "common/rng.hpp"
 #include "dem/config.hpp"
+#include "dem/io/settings.hpp"
 #include "dem/measures.hpp"
-#include "dem/rotation.hpp"
-#include "dem/settings.hpp"
+#include "dem/model/rotation.hpp"
 #include "dem/simulation.hpp"
 
 #include <gtest/gtest.h>
@@ -19,6 +19,9 @@ namespace {
 using aniso::Quat;
 using aniso::Vec3;
 using namespace aniso::dem;
+using namespace aniso::dem::data;
+using namespace aniso::dem::io;
+using namespace aniso::dem::model;
 
 TEST(OvoidRotation, TorqueFreeMotionConservesEnergyAndAngularMomentum) {
   const Vec3 inertia = particle_inertia(1.0, 0.5, std::numbers::pi / 4, 1.0);

@@ -6,7 +6,7 @@
 #include "common/error.hpp"
 #include "common/h5/file.hpp"
 #include "common/mpi.hpp"
-#include "dem/particle_xdmf.hpp"
+#include "dem/interop/particle_xdmf.hpp"
 #include "tests/common/checkpoint_sample.hpp"
 
 #include <gmock/gmock.h>
@@ -95,7 +95,7 @@ protected:
 
 TEST_F(ParticleXdmf, WritesParticlesAndContacts) {
   const auto summary =
-      aniso::dem::write_particle_xdmf(four_particles(), "runs/demo/load_001.h5", path("vis.xmf"));
+      aniso::dem::interop::write_particle_xdmf(four_particles(), "runs/demo/load_001.h5", path("vis.xmf"));
   EXPECT_EQ(summary.xdmf_path, path("vis.xmf"));
   EXPECT_EQ(summary.data_path, path("vis.vis.h5"));
   EXPECT_EQ(summary.particles, 4U);
@@ -154,7 +154,7 @@ TEST_F(ParticleXdmf, WritesParticlesAndContacts) {
 TEST_F(ParticleXdmf, WithoutContactsLeavesOutTheContactGrid) {
   aniso::h5::Checkpoint c = four_particles();
   c.contacts.resize(0);
-  const auto summary = aniso::dem::write_particle_xdmf(c, "in.h5", path("none.xmf"));
+  const auto summary = aniso::dem::interop::write_particle_xdmf(c, "in.h5", path("none.xmf"));
   EXPECT_EQ(summary.contacts, 0U);
   EXPECT_EQ(summary.strong_contacts, 0U);
   EXPECT_EQ(summary.mean_normal_force, 0.0);
@@ -170,7 +170,7 @@ TEST_F(ParticleXdmf, RefusesAnOutputThatIsNotXmf) {
   for (const std::string name : {"vis.h5", "vis.xdmf", ".xmf"}) {
     SCOPED_TRACE(name);
     try {
-      aniso::dem::write_particle_xdmf(four_particles(), "in.h5", path(name));
+      aniso::dem::interop::write_particle_xdmf(four_particles(), "in.h5", path(name));
       ADD_FAILURE() << "no InputError";
     } catch (const aniso::InputError& error) {
       EXPECT_THAT(error.what(), HasSubstr(path(name)));

@@ -1,4 +1,4 @@
-// The preparation protocol's cycle selection (dem/prepare.cpp, paper section 2):
+// The preparation protocol's cycle selection (dem/protocol/prepare.cpp, paper section 2):
 // the cycles stop at the first one that seizes at or below the target void ratio,
 // and the kept cycle is the one nearest the target; stopping early changes nothing
 // in the cycles that did run; a consolidation that compacts past the tolerance is met
@@ -16,6 +16,7 @@ namespace {
 
 using namespace aniso;
 using namespace aniso::dem;
+using namespace aniso::dem::protocol;
 
 DemConfig fast_config(int cycles, double target) {
   DemConfig config = test::small_config(150, 3);

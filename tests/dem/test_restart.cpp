@@ -1,12 +1,12 @@
-// Restart is bit for bit (dem/io.hpp): a run interrupted by a checkpoint,
+// Restart is bit for bit (dem/io/checkpoint.hpp): a run interrupted by a checkpoint,
 // written to HDF5, read back and continued, ends in exactly the state of the
 // uninterrupted run. Checked at several split points of a biaxial-loading
 // segment: mid-way, one step before and after a control update, right after
 // a neighbour-list rebuild, and at the very first step.
 #include "common/h5/checkpoint.hpp"
 #include "common/mpi.hpp"
-#include "dem/io.hpp"
-#include "dem/load.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/protocol/load.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -22,6 +22,9 @@ namespace {
 using aniso::Vec3;
 using namespace aniso;
 using namespace aniso::dem;
+using namespace aniso::dem::data;
+using namespace aniso::dem::io;
+using namespace aniso::dem::protocol;
 
 /// Counts bit-level differences between two arrays and reports the first.
 template <typename T>

@@ -1,5 +1,5 @@
 // The cell servo during biaxial plane-strain loading at constant mean stress
-// (dem/load.hpp, dem/cell_control.hpp): after the start-up transient the mean
+// (dem/protocol/load.hpp, dem/model/cell_control.hpp): after the start-up transient the mean
 // stress stays near its target, axis 2 does not move at all and axis 1
 // follows the prescribed rate exactly.
 //
@@ -10,8 +10,8 @@
 //   percentile 1.3e-2, max 3.2e-2. A 150-particle assembly suffers small
 //   collapses that take p away for a moment; the 0.5 % goal holds for the
 //   median, not for the maximum, at this size.
-#include "dem/load.hpp"
-#include "dem/settings.hpp"
+#include "dem/io/settings.hpp"
+#include "dem/protocol/load.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -26,6 +26,8 @@ namespace {
 using aniso::Vec3;
 using namespace aniso;
 using namespace aniso::dem;
+using namespace aniso::dem::io;
+using namespace aniso::dem::protocol;
 
 struct LoadingResult {
   double median = 0, p95 = 0, worst = 0, worst_transient = 0;

@@ -1,7 +1,7 @@
-// Particle ids in Morton order of bins (dem/spatial_order.hpp): a permutation, the Z-curve on a
+// Particle ids in Morton order of bins (dem/data/spatial_order.hpp): a permutation, the Z-curve on a
 // known grid, and neighbours in id close in space.
 #include "common/rng.hpp"
-#include "dem/spatial_order.hpp"
+#include "dem/data/spatial_order.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 namespace {
 
 using namespace aniso;
-using aniso::dem::spatial_order;
+using aniso::dem::data::spatial_order;
 
 TEST(SpatialOrder, AGridOfEightBinsFollowsTheZCurveWithXFastest) {
   // Bin centres of a 2 x 2 x 2 grid, listed in reverse Z order.

@@ -1,10 +1,10 @@
 // The contact stress, coordination and void ratio of a checkpoint written by the DEM equal
 // what the DEM itself measures at that state (dem/measures.hpp), for a small assembly built
 // with the DEM's public API (tests/dem/assembly_fixture.hpp) and loaded for a few steps.
-#include "dem/history.hpp"
-#include "dem/io.hpp"
-#include "dem/load.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/io/history.hpp"
 #include "dem/measures.hpp"
+#include "dem/protocol/load.hpp"
 #include "fabric/measures.hpp"
 
 #include <gtest/gtest.h>
@@ -21,13 +21,13 @@ TEST(FabricDem, ContactStressAndCoordinationEqualTheDemsOwn) {
   const mpi::Comm self(MPI_COMM_SELF);
   dem::DemConfig config = dem::test::small_config(150, 11);
   dem::Simulation simulation = dem::test::prepared_assembly(config);
-  dem::start_loading(simulation, config);
+  dem::protocol::start_loading(simulation, config);
   for (int k = 0; k < 500; ++k)
     simulation.step();
 
   const dem::test::TemporaryFolder folder("fabric_dem_agreement");
   const std::string path = folder.file("state.h5");
-  h5::write_checkpoint(path, dem::to_checkpoint(simulation, config.particles.d50, {{1, 2, 3, 4}}),
+  h5::write_checkpoint(path, dem::io::to_checkpoint(simulation, config.particles.d50, {{1, 2, 3, 4}}),
                        dem::test::test_provenance(), self);
   const h5::Checkpoint checkpoint = h5::read_checkpoint(path, self);
   const FabricMeasures m = measure_fabric(checkpoint, path, FabricConfig{}, self);
@@ -64,16 +64,17 @@ TEST(FabricDem, ContactStressOfLoadCheckpointsEqualsTheRecordedHistory) {
   config.equilibrium.tolerance = 1e-3;
   config.equilibrium.verify_steps = 2000;
   dem::Simulation simulation = dem::test::prepared_assembly(config);
-  dem::start_loading(simulation, config);
+  dem::protocol::start_loading(simulation, config);
   const dem::test::TemporaryFolder folder("fabric_dem_history");
   const std::string out = folder.file("");
-  dem::run_loading(simulation, config, out, dem::test::test_provenance(), make_silent_logger(), false);
-  const dem::History history = dem::History::read(out);
+  dem::protocol::run_loading(simulation, config, out, dem::test::test_provenance(), make_silent_logger(),
+                             false);
+  const dem::io::History history = dem::io::History::read(out);
   const std::vector<std::string> columns{"stress_11", "stress_22", "stress_33",
                                          "stress_23", "stress_13", "stress_12"};
   const std::array<std::array<int, 2>, 6> entry{{{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}}};
   for (std::size_t index = 0; index < config.load.checkpoint_strains.size(); ++index) {
-    const std::string path = dem::load_checkpoint_path(out, index);
+    const std::string path = dem::protocol::load_checkpoint_path(out, index);
     const FabricMeasures m = measure_fabric(h5::read_checkpoint(path, self), path, FabricConfig{}, self);
     const std::vector<double>& steps = history.column("step");
     const auto row = std::find(steps.begin(), steps.end(), static_cast<double>(m.step));

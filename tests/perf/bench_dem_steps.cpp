@@ -5,8 +5,8 @@
 // usage: [mpiexec -n N] bench_dem_steps CHECKPOINT.h5 [STEPS=2000] [REPEATS=5]
 #include "common/h5/checkpoint.hpp"
 #include "dem/config.hpp"
-#include "dem/io.hpp"
-#include "dem/load.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/protocol/load.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -30,8 +30,8 @@ int main(int argc, char** argv) {
   std::vector<double> seconds;
   double contacts = 0;
   for (int repeat = 0; repeat < n_repeats; ++repeat) {
-    dem::Simulation simulation = dem::from_checkpoint(checkpoint, path, mpi::Comm::world());
-    dem::start_loading(simulation, config);
+    dem::Simulation simulation = dem::io::from_checkpoint(checkpoint, path, mpi::Comm::world());
+    dem::protocol::start_loading(simulation, config);
     const auto start = std::chrono::steady_clock::now();
     for (long step = 0; step < n_steps; ++step)
       simulation.step();

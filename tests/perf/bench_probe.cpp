@@ -7,8 +7,8 @@
 #include "common/h5/checkpoint.hpp"
 #include "common/log.hpp"
 #include "dem/config.hpp"
-#include "dem/io.hpp"
-#include "dem/load.hpp"
+#include "dem/io/checkpoint.hpp"
+#include "dem/protocol/load.hpp"
 #include "probe/schedule.hpp"
 
 #include <algorithm>
@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
     steps = probe::n_fork_files * 2 * (forks[1].half_steps + forks[1].hold_steps);
     // The peer: one restore and the same number of loading steps.
     start = std::chrono::steady_clock::now();
-    dem::Simulation simulation = dem::from_checkpoint(checkpoint, path, comm);
-    dem::start_loading(simulation, load_config);
+    dem::Simulation simulation = dem::io::from_checkpoint(checkpoint, path, comm);
+    dem::protocol::start_loading(simulation, load_config);
     for (std::int64_t step = 0; step < steps; ++step)
       simulation.step();
     peer_seconds.push_back(seconds_since(start));

@@ -8,7 +8,7 @@
 // The forks must reproduce this; the reference fork stays at rest (the lattice is static).
 #include "common/h5/checkpoint.hpp"
 #include "common/log.hpp"
-#include "dem/contact_law.hpp"
+#include "dem/model/contact_law.hpp"
 #include "probe/collect.hpp"
 #include "probe/schedule.hpp"
 #include "probe/source.hpp"
@@ -27,8 +27,8 @@ constexpr int cells = 5;
 constexpr double diameter = 0.2e-3;
 constexpr double spacing = 0.999 * diameter; // overlap 2e-7 m: p of order 100 kPa
 
-dem::ContactMaterial material() {
-  dem::ContactMaterial m;
+dem::model::ContactMaterial material() {
+  dem::model::ContactMaterial m;
   m.shear_modulus = 29e9;
   m.poisson_ratio = 0.15;
   m.friction = 0.5;
@@ -37,14 +37,14 @@ dem::ContactMaterial material() {
 }
 
 double hertz(double overlap) {
-  return dem::hertz_normal_force(dem::contact_modulus(material()), 0.25 * diameter, overlap);
+  return dem::model::hertz_normal_force(dem::model::contact_modulus(material()), 0.25 * diameter, overlap);
 }
 
 // The lattice at rest with its contacts and the parameters the DEM restores from.
 h5::Checkpoint lattice() {
-  const dem::ContactMaterial m = material();
+  const dem::model::ContactMaterial m = material();
   h5::Checkpoint c;
-  c.time_step = 0.2 * dem::rayleigh_time_step(0.5 * diameter, 2650.0, m);
+  c.time_step = 0.2 * dem::model::rayleigh_time_step(0.5 * diameter, 2650.0, m);
   c.cell.lengths = Vec3::Constant(cells * spacing);
   c.cell.reference_lengths = c.cell.lengths;
   c.cell.mode = {h5::AxisMode::strain_rate, h5::AxisMode::strain_rate, h5::AxisMode::strain_rate};

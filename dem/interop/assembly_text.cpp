@@ -1,0 +1,330 @@
+#include "dem/interop/assembly_text.hpp"
+
+#include "common/error.hpp"
+#include "common/h5/atomic_write.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+namespace aniso::dem::interop {
+namespace {
+
+// A text file as numbered lines, with the file name for messages.
+class TextLines {
+public:
+  explicit TextLines(const std::string& path) : path_(path) {
+    std::ifstream in(path);
+    if (!in) throw FileError(fmt::format("{}: cannot open for reading", path));
+    for (std::string line; std::getline(in, line);)
+      lines_.push_back(line);
+  }
+  [[nodiscard]] std::size_t size() const { return lines_.size(); }
+  [[nodiscard]] const std::string& operator[](std::size_t k) const { return lines_[k]; }
+  [[noreturn]] void fail(std::size_t k, const std::string& what) const {
+    throw FileError(fmt::format("{}: line {}: {}", path_, k + 1, what));
+  }
+
+private:
+  std::string path_;
+  std::vector<std::string> lines_;
+};
+
+std::string without_comment(const std::string& line) {
+  return line.substr(0, line.find('#'));
+}
+
+bool blank(const std::string& line) {
+  return split_words(without_comment(line)).empty();
+}
+
+template <typename T>
+T number(const TextLines& lines, std::size_t k, const std::string& word, const char* what) {
+  T value{};
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+  if (error != std::errc() || end != word.data() + word.size())
+    lines.fail(k, fmt::format("'{}' is not a number ({})", word, what));
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(value)) lines.fail(k, fmt::format("{} is {} (not finite)", what, word));
+  }
+  return value;
+}
+
+// Section names of LAMMPS data files that describe molecules, force fields or other atom
+// styles: nothing a granular assembly of spheres has.
+const std::set<std::string>& unsupported_sections() {
+  static const std::set<std::string> names{"Bonds",
+                                           "Angles",
+                                           "Dihedrals",
+                                           "Impropers",
+                                           "Ellipsoids",
+                                           "Lines",
+                                           "Triangles",
+                                           "Bodies",
+                                           "Pair Coeffs",
+                                           "PairIJ Coeffs",
+                                           "Bond Coeffs",
+                                           "Angle Coeffs",
+                                           "Dihedral Coeffs",
+                                           "Improper Coeffs",
+                                           "BondBond Coeffs",
+                                           "BondAngle Coeffs",
+                                           "MiddleBondTorsion Coeffs",
+                                           "EndBondTorsion Coeffs",
+                                           "AngleTorsion Coeffs",
+                                           "AngleAngleTorsion Coeffs",
+                                           "BondBond13 Coeffs",
+                                           "AngleAngle Coeffs"};
+  return names;
+}
+
+bool is_section(const std::string& line, std::string* name) {
+  const std::string text = without_comment(line);
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string::npos || !std::isupper(static_cast<unsigned char>(text[first]))) return false;
+  const auto last = text.find_last_not_of(" \t\r");
+  *name = text.substr(first, last - first + 1);
+  return true;
+}
+
+// The header: counts and box, up to the first section line. Returns that line's index.
+struct Header {
+  std::size_t atoms = 0;
+  std::size_t atom_types = 0;
+  Vec3 low = Vec3::Zero(), high = Vec3::Zero();
+  std::array<bool, 3> has_axis{false, false, false};
+};
+
+std::size_t read_header(const TextLines& lines, Header& header) {
+  for (std::size_t k = 1; k < lines.size(); ++k) { // line 1 is a title, whatever it says
+    std::string section;
+    if (is_section(lines[k], &section)) return k;
+    const std::vector<std::string> w = split_words(without_comment(lines[k]));
+    if (w.empty()) continue;
+    const std::string keyword = w.size() >= 2 ? w[w.size() - 2] + " " + w.back() : w.back();
+    if (w.size() == 2 && w[1] == "atoms") {
+      header.atoms = number<std::size_t>(lines, k, w[0], "atom count");
+    } else if (w.size() == 3 && keyword == "atom types") {
+      header.atom_types = number<std::size_t>(lines, k, w[0], "atom type count");
+    } else if (w.size() == 4 && (keyword == "xlo xhi" || keyword == "ylo yhi" || keyword == "zlo zhi")) {
+      const int axis = w[2][0] - 'x';
+      header.low[axis] = number<double>(lines, k, w[0], "box lower bound");
+      header.high[axis] = number<double>(lines, k, w[1], "box upper bound");
+      header.has_axis[static_cast<std::size_t>(axis)] = true;
+    } else if (w.size() == 6 && w[3] == "xy" && w[4] == "xz" && w[5] == "yz") {
+      for (int t = 0; t < 3; ++t)
+        if (number<double>(lines, k, w[static_cast<std::size_t>(t)], "tilt factor") != 0.0)
+          lines.fail(k, "a triclinic (tilted) box: aniso's periodic cell is orthogonal");
+    } else if (w.size() >= 2 && w[0] != "0" &&
+               (w.back() == "bonds" || w.back() == "angles" || w.back() == "dihedrals" ||
+                w.back() == "impropers" || w.back() == "ellipsoids" || w.back() == "lines" ||
+                w.back() == "triangles" || w.back() == "bodies")) {
+      lines.fail(k, fmt::format("{} {}: aniso imports granular assemblies of spheres only", w[0], w.back()));
+    }
+    // Other header lines (bond types, extra/... per atom) carry nothing for spheres.
+  }
+  return lines.size();
+}
+
+// Next non-blank line from k, or lines.size().
+std::size_t skip_blank(const TextLines& lines, std::size_t k) {
+  while (k < lines.size() && blank(lines[k]))
+    ++k;
+  return k;
+}
+
+} // namespace
+
+SphereAssembly read_lammps_data(const std::string& path) {
+  const TextLines lines(path);
+  if (lines.size() == 0) throw FileError(path + ": empty file: not a LAMMPS data file");
+  Header header;
+  std::size_t k = read_header(lines, header);
+  if (header.atoms == 0) throw FileError(path + ": no 'N atoms' line in the header (or N = 0)");
+  for (std::size_t axis = 0; axis < 3; ++axis)
+    if (!header.has_axis[axis])
+      throw FileError(fmt::format("{}: no '{}lo {}hi' line in the header: the box is needed", path,
+                                  "xyz"[axis], "xyz"[axis]));
+  const Vec3 lengths = header.high - header.low;
+  if (!(lengths.minCoeff() > 0)) throw FileError(path + ": the box has a length <= 0");
+
+  SphereAssembly result;
+  result.source = path;
+  result.format = "lammps";
+  result.lengths = lengths;
+  std::map<std::uint64_t, std::size_t> row_of_id;
+  std::vector<std::array<double, 6>> velocities;
+  std::vector<std::uint64_t> velocity_ids;
+  std::vector<std::size_t> velocity_lines;
+  bool has_atoms = false;
+  while (k < lines.size()) {
+    std::string section;
+    if (!is_section(lines[k], &section)) lines.fail(k, "expected a section name (Atoms, Velocities, ...)");
+    const std::size_t title = k;
+    if (unsupported_sections().count(section))
+      lines.fail(k, fmt::format("section '{}': aniso imports granular assemblies of spheres only", section));
+    // The atom style hint after the section name ("Atoms # sphere").
+    const auto hash = lines[k].find('#');
+    const std::string style = hash == std::string::npos ? ""
+                              : split_words(lines[k].substr(hash + 1)).empty()
+                                  ? ""
+                                  : split_words(lines[k].substr(hash + 1))[0];
+    std::size_t rows = 0;
+    if (section == "Atoms" || section == "Velocities") {
+      rows = header.atoms;
+    } else if (section == "Masses") {
+      rows = header.atom_types;
+    } else {
+      lines.fail(k, fmt::format("unknown section '{}' (aniso reads Atoms, Velocities and Masses)", section));
+    }
+    if (section == "Atoms" && !style.empty() && style != "sphere" && style != "granular")
+      lines.fail(title, fmt::format("atom style '{}': aniso imports `atom_style sphere` or `granular` "
+                                    "(id type diameter density x y z)",
+                                    style));
+    k = skip_blank(lines, k + 1);
+    for (std::size_t r = 0; r < rows; ++r, k = skip_blank(lines, k + 1)) {
+      if (k >= lines.size())
+        throw FileError(fmt::format("{}: section '{}' (line {}) ends after {} of its {} rows", path, section,
+                                    title + 1, r, rows));
+      const std::vector<std::string> w = split_words(without_comment(lines[k]));
+      if (section == "Masses") continue;
+      if (section == "Atoms") {
+        has_atoms = true;
+        if (w.size() != 7 && w.size() != 10)
+          lines.fail(k, fmt::format("{} columns; `atom_style sphere` has 7 (id type diameter density x y z) "
+                                    "or 10 (with image flags)",
+                                    w.size()));
+        const auto id = number<std::uint64_t>(lines, k, w[0], "atom id");
+        if (!row_of_id.emplace(id, result.id.size()).second)
+          lines.fail(k, fmt::format("atom id {} again", id));
+        const double diameter = number<double>(lines, k, w[2], "diameter");
+        const double density = number<double>(lines, k, w[3], "density");
+        if (!(diameter > 0))
+          lines.fail(k, fmt::format("diameter {}: point particles cannot be imported", w[2]));
+        if (!(density > 0)) lines.fail(k, fmt::format("density {}, expected > 0", w[3]));
+        result.id.push_back(id);
+        result.diameter.push_back(diameter);
+        result.density.push_back(density);
+        Vec3 x;
+        for (int a = 0; a < 3; ++a)
+          x[a] = number<double>(lines, k, w[static_cast<std::size_t>(4 + a)], "position") - header.low[a];
+        result.position.push_back(x);
+      } else {
+        if (w.size() != 7)
+          lines.fail(
+              k, fmt::format("{} columns; Velocities of `atom_style sphere` have 7 (id vx vy vz wx wy wz)",
+                             w.size()));
+        velocity_ids.push_back(number<std::uint64_t>(lines, k, w[0], "atom id"));
+        velocity_lines.push_back(k);
+        std::array<double, 6> v{};
+        for (std::size_t c = 0; c < 6; ++c)
+          v[c] = number<double>(lines, k, w[1 + c], "velocity");
+        velocities.push_back(v);
+      }
+    }
+  }
+  if (!has_atoms) throw FileError(path + ": no Atoms section");
+  result.velocity.assign(result.size(), Vec3::Zero());
+  result.angular_velocity.assign(result.size(), Vec3::Zero());
+  std::vector<char> seen(result.size(), 0);
+  for (std::size_t r = 0; r < velocities.size(); ++r) {
+    const auto found = row_of_id.find(velocity_ids[r]);
+    if (found == row_of_id.end())
+      lines.fail(velocity_lines[r],
+                 fmt::format("velocity of atom id {}, which is not in Atoms", velocity_ids[r]));
+    if (seen[found->second]++)
+      lines.fail(velocity_lines[r], fmt::format("atom id {} again", velocity_ids[r]));
+    const auto& v = velocities[r];
+    result.velocity[found->second] = Vec3(v[0], v[1], v[2]);
+    result.angular_velocity[found->second] = Vec3(v[3], v[4], v[5]);
+  }
+  return result;
+}
+
+SphereAssembly read_yade_text(const std::string& path, const Vec3& lengths) {
+  require_input(lengths.minCoeff() > 0 && std::isfinite(lengths.sum()),
+                fmt::format("import of '{}': the cell lengths must be > 0 (YADE's text export does not "
+                            "carry the periodic cell: give it with --cell LX,LY,LZ)",
+                            path));
+  const TextLines lines(path);
+  SphereAssembly result;
+  result.source = path;
+  result.format = "yade";
+  result.lengths = lengths;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const std::vector<std::string> w = split_words(without_comment(lines[k]));
+    if (w.empty()) continue;
+    if (w.size() != 4)
+      lines.fail(k, fmt::format("{} columns; YADE's sphere export has 4 (x y z r)", w.size()));
+    Vec3 x;
+    for (std::size_t a = 0; a < 3; ++a)
+      x[static_cast<int>(a)] = number<double>(lines, k, w[a], "position");
+    const double radius = number<double>(lines, k, w[3], "radius");
+    if (!(radius > 0)) lines.fail(k, fmt::format("radius {}, expected > 0", w[3]));
+    result.id.push_back(result.id.size() + 1);
+    result.diameter.push_back(2 * radius);
+    result.position.push_back(x);
+  }
+  if (result.size() == 0) throw FileError(path + ": no spheres (expected 'x y z r' lines)");
+  result.velocity.assign(result.size(), Vec3::Zero());
+  result.angular_velocity.assign(result.size(), Vec3::Zero());
+  return result;
+}
+
+std::vector<std::string> split_words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> result;
+  for (std::string word; in >> word;)
+    result.push_back(word);
+  return result;
+}
+
+std::vector<std::uint64_t> lammps_ids(const h5::Checkpoint& checkpoint) {
+  const auto& p = checkpoint.particles;
+  if (!p.source_id.empty()) return p.source_id;
+  std::vector<std::uint64_t> ids(p.size());
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    ids[k] = p.id[k] + 1;
+  return ids;
+}
+
+void write_lammps_data(const std::string& path, const h5::Checkpoint& checkpoint) {
+  const auto& p = checkpoint.particles;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    require_input(p.aspect_ratio[k] == 1.0,
+                  fmt::format("export: particle {} has aspect ratio {:g}: a LAMMPS data file of "
+                              "`atom_style sphere` holds spheres only",
+                              p.id[k], p.aspect_ratio[k]));
+  const std::vector<std::uint64_t> ids = lammps_ids(checkpoint);
+  const Vec3& lengths = checkpoint.cell.lengths;
+  std::string text = fmt::format("LAMMPS data file (atom_style sphere) exported by aniso-dem, step {}\n\n{} "
+                                 "atoms\n1 atom types\n\n",
+                                 checkpoint.step, p.size());
+  for (int a = 0; a < 3; ++a)
+    text += fmt::format("0 {:.17g} {}lo {}hi\n", lengths[a], "xyz"[a], "xyz"[a]);
+  text += "\nAtoms # sphere\n\n";
+  // The assembly's density as stored (exact), not mass / volume (rounded).
+  const bool stored_density = h5::has_parameter(checkpoint, "density");
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const double volume = std::numbers::pi / 6 * p.diameter[k] * p.diameter[k] * p.diameter[k];
+    const double density = stored_density ? h5::parameter(checkpoint, "density", "") : p.mass[k] / volume;
+    text += fmt::format("{} 1 {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", ids[k], p.diameter[k], density,
+                        p.position[k].x(), p.position[k].y(), p.position[k].z());
+  }
+  text += "\nVelocities\n\n";
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Vec3& v = p.velocity[k];
+    const Vec3& w = p.angular_velocity[k];
+    text += fmt::format("{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", ids[k], v.x(), v.y(), v.z(),
+                        w.x(), w.y(), w.z());
+  }
+  h5::write_text_atomically(path, text);
+}
+
+} // namespace aniso::dem::interop

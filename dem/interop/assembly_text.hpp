@@ -1,0 +1,55 @@
+#pragma once
+// Sphere assemblies in the text formats of other DEM codes: LAMMPS / LIGGGHTS data files
+// (`read_data`, `atom_style sphere` or `granular`) and YADE's text export of spheres
+// (`yade.export.text`, "x y z r" lines). The way in and out for `aniso-dem import` and
+// `aniso-dem export` (docs/user-guide.md, "Bringing a packing from another code").
+
+#include "common/h5/checkpoint.hpp"
+#include "common/tensor.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aniso::dem::interop {
+
+/// Spheres as another code stores them: ids as given, positions relative to the box's lower
+/// corner (not yet wrapped), one row per sphere.
+struct SphereAssembly {
+  std::string source; ///< the file read
+  std::string format; ///< "lammps" or "yade"
+  Vec3 lengths = Vec3::Zero();
+  std::vector<std::uint64_t> id;
+  std::vector<double> diameter;       ///< [m]
+  std::vector<double> density;        ///< [kg/m^3]; empty when the file has none (YADE)
+  std::vector<Vec3> position;         ///< [m], relative to the lower corner of the box
+  std::vector<Vec3> velocity;         ///< [m/s]; zero when the file has none
+  std::vector<Vec3> angular_velocity; ///< [rad/s]; zero when the file has none
+
+  [[nodiscard]] std::size_t size() const { return id.size(); }
+};
+
+/// Reads a LAMMPS data file of spheres: header counts and an orthogonal box, an Atoms section
+/// with `id type diameter density x y z [ix iy iz]` rows, an optional Velocities section
+/// (`id vx vy vz wx wy wz`). Refuses by name what aniso cannot represent (a tilted box, another
+/// atom style, bonds, point particles, duplicate or missing ids) with FileError naming the file
+/// and line.
+SphereAssembly read_lammps_data(const std::string& path);
+
+/// Reads YADE's text export of spheres ("x y z r" per line, '#' comments) in a periodic cell
+/// of the given lengths (YADE's text export does not carry the cell); ids are 1..N in file order.
+SphereAssembly read_yade_text(const std::string& path, const Vec3& lengths);
+
+/// Writes a whole checkpoint of spheres (every row) as a LAMMPS data file (`atom_style sphere`,
+/// box [0, L), one atom type), with its Velocities. The LAMMPS id of a particle is its
+/// /particles/source_id where the checkpoint has one (an imported assembly), else id + 1.
+/// InputError if a particle is not a sphere.
+void write_lammps_data(const std::string& path, const h5::Checkpoint& checkpoint);
+
+/// The whitespace-separated words of a line of text.
+std::vector<std::string> split_words(const std::string& text);
+
+/// The LAMMPS id write_lammps_data gives each particle row.
+std::vector<std::uint64_t> lammps_ids(const h5::Checkpoint& checkpoint);
+
+} // namespace aniso::dem::interop

@@ -1,0 +1,113 @@
+#include "dem/io/run_folder.hpp"
+
+#include "common/error.hpp"
+#include "common/root_only.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sys/file.h>
+#include <unistd.h>
+
+namespace aniso::dem::io {
+namespace fs = std::filesystem;
+
+RunFolderLock::RunFolderLock(const std::string& folder, const mpi::Comm& comm) {
+  const std::string path = folder + "/.aniso-dem.lock";
+  run_on_root(comm, [&] {
+    descriptor_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    require_file(descriptor_ >= 0,
+                 fmt::format("cannot open the lock file '{}': {}", path, std::strerror(errno)));
+    if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      std::string holder;
+      std::ifstream(path) >> holder;
+      ::close(descriptor_);
+      descriptor_ = -1;
+      require_input(
+          error != EWOULDBLOCK,
+          fmt::format("another aniso-dem (pid {}) is writing into '{}' (it holds '{}'): wait for it "
+                      "to end, or choose another dem.output_dir",
+                      holder.empty() ? "?" : holder, folder, path));
+      throw FileError(fmt::format("cannot lock '{}': {}", path, std::strerror(error)));
+    }
+    // The holder's pid, for the message above; the lock itself is the flock, not the content.
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(descriptor_, 0) == 0) static_cast<void>(::pwrite(descriptor_, pid.data(), pid.size(), 0));
+  });
+}
+
+RunFolderLock::~RunFolderLock() {
+  if (descriptor_ >= 0) ::close(descriptor_); // closing releases the flock
+}
+
+std::vector<std::string> loading_run_files(const std::string& folder) {
+  static const std::regex pattern(R"(history\.(h5|csv)|load_(\d{3,}|interrupted)\.h5)");
+  std::vector<std::string> names;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(folder, error)) {
+    const std::string name = entry.path().filename().string();
+    if (std::regex_match(name, pattern)) names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void clear_for_fresh_loading(const std::string& folder, bool overwrite, const std::string& input,
+                             const mpi::Comm& comm) {
+  run_on_root(comm, [&] {
+    const std::vector<std::string> names = loading_run_files(folder);
+    if (names.empty()) return;
+    if (!overwrite) {
+      std::string listed;
+      for (std::size_t k = 0; k < names.size() && k < 4; ++k)
+        listed += (k ? ", " : "") + names[k];
+      if (names.size() > 4) listed += fmt::format(" and {} more", names.size() - 4);
+      throw InputError(fmt::format("load: '{}' already holds a loading run ({}); a new loading there would "
+                                   "replace it. Continue it with --input <its load_NNN.h5> --resume, choose "
+                                   "another dem.output_dir, or pass --overwrite to replace it",
+                                   folder, listed));
+    }
+    for (const std::string& name : names) {
+      std::error_code same;
+      require_input(
+          !fs::equivalent(fs::path(folder) / name, input, same),
+          fmt::format("load --overwrite: the input '{}' is a file of the run it would remove; copy it "
+                      "elsewhere first, or load into another dem.output_dir",
+                      input));
+    }
+    for (const std::string& name : names) {
+      std::error_code error;
+      fs::remove(fs::path(folder) / name, error);
+      require_file(!error,
+                   fmt::format("load --overwrite: cannot remove '{}/{}': {}", folder, name, error.message()));
+    }
+  });
+}
+
+std::string new_run_id(const mpi::Comm& comm) {
+  std::string id;
+  if (comm.is_root()) {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y%m%dT%H%M%SZ", &utc);
+    std::random_device entropy;
+    const std::uint64_t bits = (static_cast<std::uint64_t>(entropy()) << 32U) ^ entropy();
+    id = fmt::format("{}-{:012x}", date, bits & 0xffffffffffffULL);
+  }
+  std::vector<char> bytes(id.begin(), id.end());
+  comm.broadcast(bytes);
+  return {bytes.begin(), bytes.end()};
+}
+
+} // namespace aniso::dem::io

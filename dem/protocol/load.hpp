@@ -1,0 +1,44 @@
+#pragma once
+// Biaxial plane strain at constant mean stress (paper section 2): axis 1
+// shortened at a constant rate, axis 2 held, axis 3 servoed so that p stays at
+// its target. Checkpoints at the configured strains, a history row every
+// history_interval of strain. A run can resume from any of its checkpoints
+// and reproduces the uninterrupted run bit for bit.
+
+#include "common/h5/provenance.hpp"
+#include "common/log.hpp"
+#include "dem/config.hpp"
+#include "dem/simulation.hpp"
+
+#include <string>
+#include <vector>
+
+namespace aniso::dem::protocol {
+
+struct LoadSummary {
+  double final_strain = 0;
+  double peak_stress_ratio = 0;
+  double peak_strain = 0;
+  std::int64_t steps = 0;
+  std::int64_t relaxation_steps = 0; ///< of `steps`, spent relaxing before checkpoints
+  double wall_seconds = 0;
+  std::vector<std::string> checkpoints;
+  std::string interrupted_checkpoint; ///< written on SIGTERM, for --resume; empty if the run ended
+};
+
+/// Sets up loading on a prepared assembly: strain measured from here, loading friction
+/// and damping, the biaxial controller.
+void start_loading(Simulation& simulation, const DemConfig& config);
+
+/// Runs from the simulation's current strain to the final strain, writing checkpoints
+/// (load_NNN.h5 in output_dir, NNN = index in checkpoint_strains) and the history, each marked
+/// with run_id. Resuming, run_id is the input checkpoint's: the history.h5 in output_dir must
+/// belong to the same run and reach the checkpoint's step (InputError naming both otherwise).
+LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
+                        const h5::Provenance& provenance, const Logger& logger, bool resuming,
+                        const std::string& run_id = {});
+
+/// Path of checkpoint number `index` in `folder`.
+std::string load_checkpoint_path(const std::string& folder, std::size_t index);
+
+} // namespace aniso::dem::protocol
