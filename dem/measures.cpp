@@ -126,4 +126,9 @@ double inertial_number(double strain_rate, double d50, double density, double me
   return std::abs(strain_rate) * d50 * std::sqrt(density / mean_stress);
 }
 
+double strain_rate_for_inertial_number(double inertial_number, double d50, double density,
+                                       double mean_stress) {
+  return inertial_number / (d50 * std::sqrt(density / mean_stress));
+}
+
 } // namespace aniso::dem

@@ -41,5 +41,8 @@ StateMeasures measure_state(const data::Particles& particles, const PeriodicCell
 
 /// Inertial number I = strain rate * D50 * sqrt(density / p) (paper: quasi-static when small).
 double inertial_number(double strain_rate, double d50, double density, double mean_stress);
+/// The strain rate of an inertial number at a mean stress: rate = I / (D50 sqrt(rho / p)).
+double strain_rate_for_inertial_number(double inertial_number, double d50, double density,
+                                       double mean_stress);
 
 } // namespace aniso::dem

@@ -74,7 +74,7 @@ Block block_of(std::size_t n, const mpi::Comm& comm) {
 
 double splice_angle_of(const h5::Checkpoint& checkpoint) {
   for (const h5::Parameter& p : checkpoint.parameters)
-    if (p.name == "ovoid_splice_angle") return p.value;
+    if (p.name == h5::parameter_name::splice_angle) return p.value;
   return OvoidShape::default_splice_angle;
 }
 
@@ -222,7 +222,7 @@ std::vector<NamedTensor> FabricMeasures::tensors() const {
 FabricMeasures measure_fabric(const h5::Checkpoint& c, const std::string& path, const FabricConfig& config,
                               const mpi::Comm& comm) {
   validate(c, path);
-  const double d50 = h5::parameter(c, "d50", path);
+  const double d50 = h5::parameter(c, h5::parameter_name::d50, path);
   require_file(d50 > 0 && std::isfinite(d50), path + ": parameter d50 must be positive");
   const double splice_angle = splice_angle_of(c);
   const std::size_t n_particles = c.particles.size(), n_contacts = c.contacts.size();

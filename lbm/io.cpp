@@ -114,8 +114,8 @@ void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
 void check_schema(const h5::Group& group) {
   const auto version = group.read_attribute<std::int64_t>("schema_version");
   if (version != permeability_schema_version)
-    group.fail(
-        fmt::format("schema_version {} is not the supported {}", version, permeability_schema_version));
+    group.fail(fmt::format("schema_version {} is not the supported {}: run aniso-lbm again on the image",
+                           version, permeability_schema_version));
 }
 
 Method read_method(const h5::Group& group) {
@@ -213,14 +213,9 @@ DirectionFile read_direction(const std::string& path) {
   const auto walls = runs.read_dataset<std::int64_t>("walls", {n});
   const auto steps = runs.read_dataset<std::int64_t>("steps", {n});
   const auto seconds = runs.read_dataset<double>("seconds", {n});
-  // Written since 2026-12-03; older files read as NaN (not recorded).
-  const auto reynolds = runs.has_child("reynolds") ? runs.read_dataset<double>("reynolds", {n})
-                                                   : std::vector<double>(n, std::nan(""));
-  // Written since 2026-12-04; older files: not recorded (NaN), and every run crossed the cell.
-  const auto throat = runs.has_child("throat_width") ? runs.read_dataset<double>("throat_width", {n})
-                                                     : std::vector<double>(n, std::nan(""));
-  const auto crosses = runs.has_child("percolates") ? runs.read_dataset<std::uint8_t>("percolates", {n})
-                                                    : std::vector<std::uint8_t>(n, 1);
+  const auto reynolds = runs.read_dataset<double>("reynolds", {n});
+  const auto throat = runs.read_dataset<double>("throat_width", {n});
+  const auto crosses = runs.read_dataset<std::uint8_t>("percolates", {n});
   const auto momentum = runs.read_dataset<double>("mean_momentum", {n, 3});
   const auto gradient = runs.read_dataset<double>("pressure_gradient", {n, 3});
   for (std::size_t r = 0; r < n; ++r) {
@@ -252,8 +247,8 @@ PermeabilityFile read_permeability(const std::string& path) {
   const h5::Group group = file.open_group("permeability");
   const auto version = group.read_attribute<std::int64_t>("schema_version");
   if (version != permeability_schema_version)
-    group.fail(
-        fmt::format("schema_version {} is not the supported {}", version, permeability_schema_version));
+    group.fail(fmt::format("schema_version {} is not the supported {}: run aniso-lbm again on the image",
+                           version, permeability_schema_version));
   PermeabilityFile result;
   result.k = from_row_major(group.read_dataset<double>("K", {3, 3}));
   result.k_lattice = from_row_major(group.read_dataset<double>("K_lattice", {3, 3}));

@@ -11,7 +11,8 @@
 
 namespace aniso::lbm {
 
-inline constexpr std::int64_t permeability_schema_version = 1;
+/// Version 2 made /runs/reynolds, throat_width and percolates required (version 1 files may lack them).
+inline constexpr std::int64_t permeability_schema_version = 2;
 
 /// "dir/name.h5" -> "<output_dir>/<prefix>_name.h5".
 std::string result_path(const std::string& output_dir, const std::string& prefix,

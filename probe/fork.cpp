@@ -2,7 +2,10 @@
 
 #include "common/error.hpp"
 #include "dem/io/checkpoint.hpp"
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
+#include "dem/model/cell_control.hpp"
+#include "dem/protocol/phase.hpp"
+#include "dem/protocol/rates.hpp"
 #include "dem/simulation.hpp"
 
 #include <fmt/format.h>
@@ -39,35 +42,27 @@ Vec3 log_strain_from(const dem::Simulation& simulation, const Vec3& start_length
   return simulation.cell().lengths().cwiseQuotient(start_lengths).array().log().matrix();
 }
 
-// Every axis strain-controlled: `rate` on `axis`, zero on the others (no mean-stress servo).
-void set_rates(dem::Simulation& simulation, int axis, double rate) {
-  h5::CellState state = simulation.cell_state();
-  state.mode = {h5::AxisMode::strain_rate, h5::AxisMode::strain_rate, h5::AxisMode::strain_rate};
-  state.hold_mean_stress = false;
-  state.target = Vec3::Zero();
-  state.target[axis] = rate;
-  simulation.set_control(state);
-}
-
-// Half an increment at `rate` on `axis`, then a hold; returns the stresses of the hold's last window.
+// Half an increment at `rate` on `axis` (every other strain held, no servo), then a hold of the
+// cell; returns the stresses of the hold's last window.
 std::vector<Mat3> half_increment(dem::Simulation& simulation, int axis, double rate, std::int64_t half_steps,
                                  const ProbeConfig& config) {
-  set_rates(simulation, axis, rate);
-  for (std::int64_t k = 0; k < half_steps; ++k)
-    simulation.step();
-  set_rates(simulation, axis, 0.0);
-  const std::int64_t interval = simulation.settings().control_interval;
+  dem::protocol::Phase phase(simulation, "half increment", half_steps + config.hold_steps);
+  Vec3 rates = Vec3::Zero();
+  rates[axis] = rate;
+  simulation.set_control(dem::model::strain_controlled(simulation.control(), rates));
+  phase.advance(half_steps);
+  simulation.set_control(dem::model::fixed_cell(simulation.control()));
+  phase.advance(config.hold_steps - config.window_steps);
+  // stress() is fresh at every control update; those in the last window are the reading.
   std::vector<Mat3> samples;
-  for (std::int64_t k = 1; k <= config.hold_steps; ++k) {
-    simulation.step();
-    // stress() is fresh at every control update; those in the last window are the reading.
-    if (k > config.hold_steps - config.window_steps && simulation.step_count() % interval == 0)
-      samples.push_back(simulation.stress());
+  while (!phase.budget_spent()) {
+    phase.advance_to_update();
+    if (simulation.at_control_update()) samples.push_back(simulation.stress());
   }
   require_input(!samples.empty(),
                 fmt::format("probe.window_steps = {} holds no stress update (every {} steps): "
                             "raise it",
-                            config.window_steps, interval));
+                            config.window_steps, simulation.settings().control_interval));
   return samples;
 }
 
@@ -97,9 +92,8 @@ ForkResult run_fork(const h5::Checkpoint& checkpoint, const std::string& path, i
   require_file(p0 > 0, fmt::format("checkpoint '{}': mean stress {:.4g} Pa is not compressive; the probe "
                                    "needs a confined assembly",
                                    path, p0));
-  const double d50 = h5::parameter(checkpoint, "d50", path);
-  const double rate = dem::io::strain_rate_for_inertial_number(config.inertial_number, d50,
-                                                               simulation.settings().density, p0);
+  const double rate = dem::strain_rate_for_inertial_number(config.inertial_number, simulation.settings().d50,
+                                                           simulation.settings().density, p0);
   const double dt = simulation.settings().time_step;
   // Every fork, the reference included, takes the same steps so that their samples line up.
   const auto half_steps =

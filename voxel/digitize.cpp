@@ -102,9 +102,9 @@ std::optional<double> find_parameter(const h5::Checkpoint& checkpoint, const std
 
 h5::VoxelImage digitize_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path,
                                    const std::string& hash, double resolution) {
-  const double d50 = h5::parameter(checkpoint, "d50", path);
+  const double d50 = h5::parameter(checkpoint, h5::parameter_name::d50, path);
   const double splice =
-      find_parameter(checkpoint, "ovoid_splice_angle").value_or(OvoidShape::default_splice_angle);
+      find_parameter(checkpoint, h5::parameter_name::splice_angle).value_or(OvoidShape::default_splice_angle);
   const Vec3& lengths = checkpoint.cell.lengths;
   h5::VoxelImage image;
   image.shape = grid_shape(lengths, d50, resolution);
@@ -112,8 +112,9 @@ h5::VoxelImage digitize_checkpoint(const h5::Checkpoint& checkpoint, const std::
   try {
     image.phase = digitize_bodies(bodies, lengths, image.shape, splice);
   } catch (const InputError& error) {
-    throw FileError(fmt::format("{}: {} (ovoid_splice_angle {} rad{})", path, error.what(), splice,
-                                find_parameter(checkpoint, "ovoid_splice_angle") ? "" : ", the default"));
+    throw FileError(
+        fmt::format("{}: {} (ovoid_splice_angle {} rad{})", path, error.what(), splice,
+                    find_parameter(checkpoint, h5::parameter_name::splice_angle) ? "" : ", the default"));
   }
   const double cells = static_cast<double>(image.shape[0] * image.shape[1] * image.shape[2]);
   image.voxel_size = std::cbrt(lengths.prod() / cells);

@@ -50,7 +50,7 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
   if (config.threads > 0) omp_set_num_threads(config.threads);
 
   const h5::Checkpoint checkpoint = h5::read_checkpoint(input, comm);
-  const double d50 = h5::parameter(checkpoint, "d50", input);
+  const double d50 = h5::parameter(checkpoint, h5::parameter_name::d50, input);
   if (!(std::isfinite(d50) && d50 > 0))
     throw FileError(fmt::format("{}: /parameters d50 = {} m is not a positive length", input, d50));
   const auto shape = grid_shape(checkpoint.cell.lengths, d50, config.resolution);

@@ -11,14 +11,11 @@ usage:
                                        reads its own section (`--print-config`, the stage's own validator)
                                        and the [workflow] section is checked against the checkpoints
   campaign.py resources CONFIG         the SLURM resources of [workflow.resources] as JSON, validated
-  campaign.py layout OUT               refuses a run folder with the flat layout of before 2026-12-04
-  campaign.py regroup OUT              moves such a folder's files into their stage folders
 
-`stages` prints one word per usable stage, then the optional command lines
-they offer (lbm-directions: one LBM run per flow direction); for every other
-stage it writes one line to stderr saying why it is skipped. A stage counts as built when its
-executable exists and its --help shows the options the workflow passes (an
-executable of an older build may lack some).
+`stages` prints one word per built stage (its executable exists under BIN), then the optional
+command lines they offer (lbm-directions: one LBM run per flow direction); for every other stage
+it writes one line to stderr saying why it is skipped. BIN is one build of this source tree
+(make build-stages), so a built stage offers every command line the workflow calls.
 
 The campaign's own section of the config, all keys optional:
 
@@ -42,10 +39,7 @@ The SLURM resources of each kind of job (slurm/submit.py), all optional:
 
 A run folder keeps each stage's files in a folder of its own (docs/user-guide.md, "The run
 folder"): dem/ (prepared.h5, load_NNN.h5, history), fabric/, probe/, voxel/, lbm/, beside
-figures/, logs/, slurm/ and report.md. Until 2026-12-04 they all lay in the run folder itself;
-`layout` stops a campaign on such a folder (it would otherwise start the DEM again beside the
-old files) and `regroup` moves the files (renames keep their times, so make and the resume
-point see them as before).
+figures/, logs/, slurm/ and report.md.
 
 `load-input OUT` (OUT the DEM's folder) resumes from the newest checkpoint of this run that history.h5
 already covers (history.h5 is rewritten just after each checkpoint, so a kill
@@ -60,19 +54,16 @@ import subprocess
 import sys
 import tomllib
 
-# stage -> (executable under BIN, [(arguments for --help, text that help must contain)]): the
-# command lines workflows/Makefile uses.
-STAGE_INTERFACES = {
-    "fabric": ("fabric/aniso-fabric", [([], "--input"), (["series"], "--probe")]),
-    "probe": ("probe/aniso-probe", [(["fork"], "--fork"), (["collect"], "--input")]),
-    "voxel": ("voxel/aniso-voxel", [([], "--input")]),
-    "lbm": ("lbm/aniso-lbm", [([], "--input")]),
+# stage -> its executable under BIN.
+STAGE_EXECUTABLES = {
+    "fabric": "fabric/aniso-fabric",
+    "probe": "probe/aniso-probe",
+    "voxel": "voxel/aniso-voxel",
+    "lbm": "lbm/aniso-lbm",
 }
-# Optional command lines of a usable stage: feature -> (stage, checks as above).
-# lbm-directions: one flow direction per run (--direction D), then `collect`, for job arrays.
-STAGE_FEATURES = {
-    "lbm-directions": ("lbm", [([], "--direction"), (["collect"], "--input")]),
-}
+# Optional command lines of a built stage: feature -> stage. lbm-directions: one flow direction
+# per run (--direction D), then `collect`, for job arrays.
+STAGE_FEATURES = {"lbm-directions": "lbm"}
 
 
 # The exit codes and kinds of common/error.hpp (docs/user-guide.md, "Exit codes").
@@ -198,7 +189,7 @@ def checkpoint_stems(config, bin_dir, stage=None):
 def check_config(config, bin_dir):
     """Every built stage validates its section of CONFIG, so that a misspelt [lbm] key stops the
     campaign before hours of DEM rather than when the LBM job starts."""
-    executables = [("dem", "dem/aniso-dem")] + [(stage, relative) for stage, (relative, _) in STAGE_INTERFACES.items()]
+    executables = [("dem", "dem/aniso-dem")] + list(STAGE_EXECUTABLES.items())
     checked = []
     for stage, relative in executables:
         executable = os.path.join(bin_dir, relative)
@@ -215,38 +206,16 @@ def check_config(config, bin_dir):
     print(f"campaign: {config} is valid for {', '.join(checked)} and [workflow]", file=sys.stderr)
 
 
-def help_text(executable, arguments):
-    result = subprocess.run([executable, *arguments, "--help"], capture_output=True, text=True)
-    return result.returncode, result.stdout + result.stderr
-
-
-def missing_options(executable, interface):
-    missing = []
-    for arguments, needle in interface:
-        code, text = help_text(executable, arguments)
-        if code != 0 or needle not in text:
-            missing.append(" ".join([*arguments, needle]))
-    return missing
-
-
 def usable_stages(bin_dir):
-    """The usable stages, then the optional features they offer."""
+    """The built stages, then the optional features they offer."""
     usable = []
-    for stage, (relative, interface) in STAGE_INTERFACES.items():
+    for stage, relative in STAGE_EXECUTABLES.items():
         executable = os.path.join(bin_dir, relative)
-        if not os.access(executable, os.X_OK):
-            print(f"campaign: skipping {stage}: {executable} not found", file=sys.stderr)
-            continue
-        missing = missing_options(executable, interface)
-        if missing:
-            print(f"campaign: skipping {stage}: {os.path.basename(executable)} does not offer the command "
-                  f"lines the workflow uses (it lacks: {', '.join(missing)}; an older build?); no {stage} "
-                  f"results are written", file=sys.stderr)
-        else:
+        if os.access(executable, os.X_OK):
             usable.append(stage)
-    for feature, (stage, interface) in STAGE_FEATURES.items():
-        if stage in usable and not missing_options(os.path.join(bin_dir, STAGE_INTERFACES[stage][0]), interface):
-            usable.append(feature)
+        else:
+            print(f"campaign: skipping {stage}: {executable} not found", file=sys.stderr)
+    usable += [feature for feature, stage in STAGE_FEATURES.items() if stage in usable]
     return usable
 
 
@@ -296,51 +265,6 @@ def load_input(out, config):
     return ["--input", newest, "--resume"]
 
 
-# The files each stage writes into its folder, by name (docs/formats/ of each stage).
-STAGE_FILES = {
-    "dem": r"prepared\.h5|load_(\d{3,}|interrupted)\.h5|history\.(h5|csv)|load\.done|\.aniso-dem\.lock",
-    "fabric": r"fabric(_series)?(_correlations)?\.(h5|csv)",
-    "probe": r"probe_.+\.(h5|csv)",
-    "voxel": r"(image|voids)_.+\.(h5|csv|xmf)",
-    "lbm": r"permeability_.+\.(h5|csv|xmf)",
-}
-
-
-def flat_files(out):
-    """{stage: [file names]} of the stage files lying in OUT itself (the layout before 2026-12-04)."""
-    names = sorted(os.listdir(out)) if os.path.isdir(out) else []
-    found = {}
-    for stage, pattern in STAGE_FILES.items():
-        files = [n for n in names if re.fullmatch(pattern, n) and os.path.isfile(os.path.join(out, n))]
-        if files:
-            found[stage] = files
-    return found
-
-
-def check_layout(out):
-    found = flat_files(out)
-    if found:
-        count = sum(len(files) for files in found.values())
-        fail(f"{out} holds {count} stage files in the run folder itself (the layout before 2026-12-04, "
-             f"e.g. {next(iter(found.values()))[0]}); each stage now has its own folder. Move them with: "
-             f"{os.path.abspath(__file__)} regroup {out}")
-
-
-def regroup(out):
-    found = flat_files(out)
-    for stage, files in found.items():  # every clash is found before anything moves
-        for name in files:
-            if os.path.exists(os.path.join(out, stage, name)):
-                fail(f"cannot move {name} into {os.path.join(out, stage)}: a file of that name is there already "
-                     "(nothing was moved; move or delete one of them)", FILE_ERROR)
-    for stage, files in found.items():
-        folder = os.path.join(out, stage)
-        os.makedirs(folder, exist_ok=True)
-        for name in files:
-            os.rename(os.path.join(out, name), os.path.join(folder, name))
-        print(f"campaign: moved {len(files)} files into {folder}", file=sys.stderr)
-
-
 def main(argv):
     if len(argv) in (4, 5) and argv[1] == "checkpoints":
         print(" ".join(checkpoint_stems(*argv[2:])))
@@ -350,10 +274,6 @@ def main(argv):
         check_config(argv[2], argv[3])
     elif len(argv) == 3 and argv[1] == "resources":
         print(json.dumps(sbatch_resources(argv[2])))
-    elif len(argv) == 3 and argv[1] == "layout":
-        check_layout(argv[2])
-    elif len(argv) == 3 and argv[1] == "regroup":
-        regroup(argv[2])
     elif len(argv) == 4 and argv[1] == "load-input":
         print(" ".join(load_input(argv[2], argv[3])))
     else:

@@ -34,6 +34,14 @@ struct CellState {
   Vec3 servo_state = Vec3::Zero(); ///< controller memory (integral terms) per axis
 };
 
+/// The /parameters that stages other than the DEM read, by name. The DEM's parameter table
+/// (dem/io/parameters.cpp) declares every parameter a checkpoint stores, these among them.
+namespace parameter_name {
+inline constexpr const char* d50 = "d50";                         ///< median diameter by volume [m]
+inline constexpr const char* density = "density";                 ///< solid density [kg/m^3]
+inline constexpr const char* splice_angle = "ovoid_splice_angle"; ///< ovoid splice angle beta [rad]
+} // namespace parameter_name
+
 /// A named scalar parameter with its unit, stored as an attribute of /parameters.
 struct Parameter {
   std::string name;

@@ -310,10 +310,11 @@ void write_lammps_data(const std::string& path, const h5::Checkpoint& checkpoint
     text += fmt::format("0 {:.17g} {}lo {}hi\n", lengths[a], "xyz"[a], "xyz"[a]);
   text += "\nAtoms # sphere\n\n";
   // The assembly's density as stored (exact), not mass / volume (rounded).
-  const bool stored_density = h5::has_parameter(checkpoint, "density");
+  const bool stored_density = h5::has_parameter(checkpoint, h5::parameter_name::density);
   for (std::size_t k = 0; k < p.size(); ++k) {
     const double volume = std::numbers::pi / 6 * p.diameter[k] * p.diameter[k] * p.diameter[k];
-    const double density = stored_density ? h5::parameter(checkpoint, "density", "") : p.mass[k] / volume;
+    const double density =
+        stored_density ? h5::parameter(checkpoint, h5::parameter_name::density, "") : p.mass[k] / volume;
     text += fmt::format("{} 1 {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", ids[k], p.diameter[k], density,
                         p.position[k].x(), p.position[k].y(), p.position[k].z());
   }

@@ -4,7 +4,8 @@
 #include "common/error.hpp"
 #include "dem/data/spatial_order.hpp"
 #include "dem/io/checkpoint.hpp"
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
+#include "dem/protocol/rates.hpp"
 #include "dem/simulation.hpp"
 
 #include <fmt/format.h>
@@ -165,14 +166,12 @@ h5::Checkpoint import_spheres(const SphereAssembly& assembly, const std::vector<
   std::vector<std::uint64_t> source_id;
   data::Particles particles =
       numbered_particles(assembly, density, config.particles.splice_angle, d50, source_id);
-  h5::CellState state;
-  state.lengths = assembly.lengths;
-  state.reference_lengths = assembly.lengths;
   const SimulationSettings settings = io::settings_from_config(config, config.particles.diameter_min);
   // Every rank builds the same whole assembly (one force pass; rank counts cannot change it).
   const mpi::Comm self(MPI_COMM_SELF);
-  const Simulation simulation(std::move(particles), state, settings, 0.0, 0, false, self);
-  h5::Checkpoint checkpoint = io::to_checkpoint(simulation, d50, {});
+  const Simulation simulation(std::move(particles), PeriodicCell(assembly.lengths), model::CellControl{},
+                              settings, self);
+  h5::Checkpoint checkpoint = io::to_checkpoint(simulation);
   checkpoint.particles.source_id = source_id;
   summary.contacts = checkpoint.contacts.size();
   summary.d50 = d50;
@@ -184,7 +183,7 @@ h5::Checkpoint import_spheres(const SphereAssembly& assembly, const std::vector<
   // row) and measures the equilibrium of the forces they give.
   const Simulation restored = io::from_checkpoint(checkpoint, assembly.source, self);
   summary.mean_stress = mean_stress_compression_positive(restored.stress());
-  h5::Checkpoint result = io::to_checkpoint(restored, d50, {});
+  h5::Checkpoint result = io::to_checkpoint(restored);
   result.particles.source_id = source_id;
   return result;
 }

@@ -2,7 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "dem/io/parameter_ranges.hpp"
+#include "dem/io/parameters.hpp"
 
 #include <fmt/format.h>
 
@@ -11,14 +11,13 @@
 
 namespace aniso::dem::io {
 
-h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
-                             const std::vector<std::array<std::uint64_t, 4>>& rng_state) {
+h5::Checkpoint to_checkpoint(const Simulation& simulation, const CheckpointLabels& labels) {
   h5::Checkpoint c;
   c.time = simulation.time();
   c.step = simulation.step_count();
   const SimulationSettings& s = simulation.settings();
   c.time_step = s.time_step;
-  c.cell = simulation.cell_state();
+  c.cell = cell_state(simulation.cell(), simulation.control());
   const data::Particles& p = simulation.particles();
   const std::size_t n = p.n_owned; // each rank writes the particles it owns
   c.particles.resize(n);
@@ -56,25 +55,11 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
     c.contacts.tangential_force.push_back(history[k].tangential_force);
     c.contacts.sliding.push_back(history[k].sliding ? 1 : 0);
   }
-  c.parameters = {
-      {"shear_modulus", s.material.shear_modulus, units::pascal},
-      {"poisson_ratio", s.material.poisson_ratio, units::none},
-      {"friction", s.material.friction, units::none},
-      {"damping_ratio", s.material.damping_ratio, units::none},
-      {"density", s.density, units::density},
-      {"d50", d50, units::metre},
-      {"skin", s.skin, units::metre},
-      {"control_interval", static_cast<double>(s.control_interval), units::none},
-      {"servo_gain", s.servo.gain, units::none},
-      {"servo_max_rate", s.servo.max_rate, units::per_second},
-      {"servo_integral_intervals", s.servo.integral_intervals, units::none},
-      {"explosion_overlap", s.explosion_overlap, units::none},
-      {"global_damping", s.global_damping, units::none},
-      {"global_damping_rate", simulation.global_damping_rate(), units::per_second},
-      {"ovoid_splice_angle", s.splice_angle, units::radian},
-      {"hertz_radius_curvature", s.hertz_radius == model::HertzRadius::curvature ? 1.0 : 0.0, units::none},
-  };
-  c.rng_state = rng_state;
+  c.parameters = stored_parameters(s);
+  // The engine's state, not a parameter: a restart between control updates needs it.
+  c.parameters.push_back({"global_damping_rate", simulation.global_damping_rate(), units::per_second});
+  c.rng_state = labels.rng_state;
+  c.run_id = labels.run_id;
   // Fresh at the stored step (collective: every rank writes its part of the checkpoint).
   const Equilibrium equilibrium = measure_equilibrium(p, simulation.neighbors(), simulation.comm());
   c.unbalanced_force_ratio = equilibrium.unbalanced_force_ratio;
@@ -82,47 +67,11 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
   return c;
 }
 
-SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path) {
-  // Each stored setting within the range its config key allows (dem/io/parameter_ranges.hpp): a
-  // file is refused for what the configuration would refuse (control_interval 0 divided by zero,
-  // a Poisson ratio of 0.7 gave a NaN critical step that passed the stability check).
-  const auto get = [&](const char* name, const config::Range& range) {
-    const double value = h5::parameter(checkpoint, name, path);
-    if (!range.contains(value)) {
-      throw FileError(fmt::format("{}: /parameters (attribute '{}'): value {:g} is out of range, expected {}",
-                                  path, name, value, range.describe()));
-    }
-    return value;
-  };
-  SimulationSettings s;
-  s.material.shear_modulus = get("shear_modulus", ranges::shear_modulus());
-  s.material.poisson_ratio = get("poisson_ratio", ranges::poisson_ratio());
-  s.material.friction = get("friction", ranges::friction());
-  s.material.damping_ratio = get("damping_ratio", ranges::contact_damping());
-  s.density = get("density", ranges::density());
-  if (!(checkpoint.time_step > 0.0))
-    throw FileError(
-        fmt::format("{}: / (attribute time_step): value {:g}, expected > 0", path, checkpoint.time_step));
-  s.time_step = checkpoint.time_step;
-  s.skin = get("skin", ranges::length());
-  s.control_interval = static_cast<std::int64_t>(get("control_interval", ranges::control_interval()));
-  s.servo.gain = get("servo_gain", ranges::servo_gain());
-  s.servo.max_rate = get("servo_max_rate", config::Range::non_negative()); // 0: no cap
-  s.servo.integral_intervals = get("servo_integral_intervals", config::Range::positive());
-  s.explosion_overlap = get("explosion_overlap", ranges::explosion_overlap());
-  // Checkpoints written before ovoids landed hold spheres only: the defaults are exact for them.
-  if (h5::has_parameter(checkpoint, "ovoid_splice_angle")) {
-    const config::Range radians{0.0, ranges::splice_angle_degrees().max * std::numbers::pi / 180.0, false,
-                                false};
-    s.splice_angle = get("ovoid_splice_angle", radians);
-  }
-  if (h5::has_parameter(checkpoint, "hertz_radius_curvature") &&
-      get("hertz_radius_curvature", config::Range::closed(0.0, 1.0)) != 0.0)
-    s.hertz_radius = model::HertzRadius::curvature;
-  // Checkpoints written before the global damping landed ran without it.
-  if (h5::has_parameter(checkpoint, "global_damping"))
-    s.global_damping = get("global_damping", ranges::global_damping());
-  return s;
+h5::Checkpoint write_checkpoint(const std::string& path, const Simulation& simulation,
+                                const CheckpointLabels& labels, const h5::Provenance& provenance) {
+  h5::Checkpoint checkpoint = to_checkpoint(simulation, labels);
+  h5::write_checkpoint(path, checkpoint, provenance, simulation.comm());
+  return checkpoint;
 }
 
 namespace {
@@ -133,7 +82,7 @@ namespace {
 void check_particle_rows(const h5::Checkpoint& checkpoint, const std::string& path) {
   const auto& rows = checkpoint.particles;
   if (rows.size() == 0) throw FileError(path + ": /particles: no particles");
-  const config::Range aspect = ranges::aspect_ratio();
+  const config::Range aspect = key_range("dem.particles.aspect_ratio");
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto refuse = [&](const char* dataset, const std::string& what) {
       throw FileError(
@@ -167,14 +116,55 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
     particles.force[k] = rows.force[k];
     particles.torque[k] = rows.torque[k];
   }
-  const SimulationSettings settings = settings_from_checkpoint(checkpoint, path);
-  Simulation simulation(std::move(particles), checkpoint.cell, settings, checkpoint.time, checkpoint.step,
-                        true, comm);
-  simulation.restore_contacts(checkpoint.contacts, path);
-  simulation.restore_stress();
-  if (h5::has_parameter(checkpoint, "global_damping_rate"))
-    simulation.restore_global_damping_rate(h5::parameter(checkpoint, "global_damping_rate", path));
+  RestartState restart;
+  restart.time = checkpoint.time;
+  restart.step = checkpoint.step;
+  restart.source = fmt::format("checkpoint '{}'", path);
+  const h5::ContactRows& rows_c = checkpoint.contacts;
+  restart.contacts.resize(rows_c.size());
+  for (std::size_t c = 0; c < rows_c.size(); ++c) {
+    StoredContact& stored = restart.contacts[c];
+    stored.ids = rows_c.particles[c];
+    stored.normal = rows_c.normal[c];
+    stored.point = rows_c.point[c];
+    stored.overlap = rows_c.overlap[c];
+    stored.force = rows_c.force[c];
+    stored.tangential_force = rows_c.tangential_force[c];
+    stored.sliding = rows_c.sliding[c] != 0;
+  }
+  restart.global_damping_rate = h5::parameter(checkpoint, "global_damping_rate", path);
+  const auto [cell, control] = cell_and_control(checkpoint.cell);
+  Simulation simulation(std::move(particles), cell, control, settings_from_checkpoint(checkpoint, path),
+                        restart, comm);
   return simulation;
+}
+
+h5::CellState cell_state(const PeriodicCell& cell, const model::CellControl& control) {
+  h5::CellState state;
+  state.lengths = cell.lengths();
+  state.reference_lengths = cell.reference_lengths();
+  state.strain_rate = control.strain_rate;
+  for (std::size_t a = 0; a < 3; ++a)
+    state.mode[a] =
+        control.mode[a] == model::AxisMode::stress ? h5::AxisMode::stress : h5::AxisMode::strain_rate;
+  state.target = control.target;
+  state.hold_mean_stress = control.hold_mean_stress;
+  state.mean_stress_target = control.mean_stress_target;
+  state.servo_state = control.servo_state;
+  return state;
+}
+
+std::pair<PeriodicCell, model::CellControl> cell_and_control(const h5::CellState& state) {
+  model::CellControl control;
+  control.strain_rate = state.strain_rate;
+  for (std::size_t a = 0; a < 3; ++a)
+    control.mode[a] =
+        state.mode[a] == h5::AxisMode::stress ? model::AxisMode::stress : model::AxisMode::strain_rate;
+  control.target = state.target;
+  control.hold_mean_stress = state.hold_mean_stress;
+  control.mean_stress_target = state.mean_stress_target;
+  control.servo_state = state.servo_state;
+  return {PeriodicCell(state.lengths, state.reference_lengths), control};
 }
 
 } // namespace aniso::dem::io

@@ -1,26 +1,40 @@
 #pragma once
-// Simulation <-> checkpoint. The checkpoint carries every setting a run needs
-// to continue bit for bit, so a restart does not depend on the config.
+// Simulation <-> checkpoint. The checkpoint carries every setting a run needs to continue bit
+// for bit (the parameter table, parameters.hpp, says which), so a restart does not depend on
+// the config. This folder and common/h5/ are the only places that know the file's layout.
 
 #include "common/h5/checkpoint.hpp"
 #include "dem/simulation.hpp"
 
 #include <array>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace aniso::dem::io {
 
-/// The rows this rank owns of the run's full state (pass to h5::write_checkpoint with the
-/// simulation's comm). `d50` is stored for the inertial number of later stages.
-h5::Checkpoint to_checkpoint(const Simulation& simulation, double d50,
-                             const std::vector<std::array<std::uint64_t, 4>>& rng_state);
+/// What a checkpoint records beside the simulation's own state.
+struct CheckpointLabels {
+  std::vector<std::array<std::uint64_t, 4>> rng_state; ///< every random stream's state (prepare)
+  std::string run_id;                                  ///< the loading run that wrote it (load)
+};
 
-/// Settings stored in a checkpoint's parameters (material, step, skin, servo).
-SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path);
+/// The rows this rank owns of the run's full state (pass to h5::write_checkpoint with the
+/// simulation's comm); the equilibrium ratios are measured fresh (collective).
+h5::Checkpoint to_checkpoint(const Simulation& simulation, const CheckpointLabels& labels = {});
+
+/// Writes the simulation's state to `path` atomically (collective) and returns what was written.
+h5::Checkpoint write_checkpoint(const std::string& path, const Simulation& simulation,
+                                const CheckpointLabels& labels, const h5::Provenance& provenance);
 
 /// Rebuilds a simulation that continues exactly where the checkpoint was written, decomposed
-/// over `comm` (collective; every rank passes the whole checkpoint).
+/// over `comm` (collective; every rank passes the whole checkpoint). FileError naming `path`
+/// for a file the simulation cannot start from.
 Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path, const mpi::Comm& comm);
+
+/// The cell and its controller as a checkpoint stores them, and back.
+h5::CellState cell_state(const PeriodicCell& cell, const model::CellControl& control);
+std::pair<PeriodicCell, model::CellControl> cell_and_control(const h5::CellState& state);
 
 } // namespace aniso::dem::io

@@ -2,42 +2,530 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "dem/io/parameter_ranges.hpp"
+#include "dem/measures.hpp"
+#include "dem/model/integrator.hpp"
+#include "dem/model/particle_shape.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <span>
+#include <type_traits>
+#include <variant>
 
 namespace aniso::dem::io {
+namespace {
 
 using config::Range;
 
-DemConfig read_dem_config(config::Reader& reader) {
-  DemConfig c;
-  c.seed = static_cast<std::uint64_t>(
-      reader.integer("dem.seed", 1, Range::non_negative(), "seed of every random stream"));
-  c.output_dir = reader.text("dem.output_dir", ".", "folder for checkpoints and history");
+// The member a key sets, by its path of member pointers: member<&DemConfig::load,
+// &LoadConfig::final_strain> is config.load.final_strain.
+template <auto... Path> auto& member(DemConfig& config) {
+  return (config.*....*Path);
+}
 
-  auto& p = c.particles;
-  p.count = reader.integer("dem.particles.count", p.count, Range::closed(2, 1e9), "number of particles");
-  p.diameter_min = reader.real("dem.particles.diameter_min", p.diameter_min, units::metre, ranges::diameter(),
-                               "smallest diameter (mid-plane diameter for ovoids)");
-  p.diameter_max = reader.real("dem.particles.diameter_max", p.diameter_max, units::metre, ranges::diameter(),
-                               "largest diameter");
-  p.d50 =
-      reader.real("dem.particles.d50", p.d50, units::metre, ranges::diameter(), "median diameter by volume");
-  p.aspect_ratio =
-      reader.real("dem.particles.aspect_ratio", p.aspect_ratio, units::none, ranges::aspect_ratio(),
-                  "axial height / mid-plane diameter (paper: 1, 0.8, 0.625, 0.5)");
-  p.splice_angle =
-      reader.real("dem.particles.splice_angle_degrees", p.splice_angle * 180.0 / std::numbers::pi,
-                  units::none, ranges::splice_angle_degrees(),
-                  "ovoid splice angle beta between axis and surface normal where cap meets band, "
-                  "in degrees (Kuhn's OVAL: 45); must be below 2 atan(aspect_ratio)") *
-      std::numbers::pi / 180.0;
-  p.density =
-      reader.real("dem.particles.density", p.density, units::density, ranges::density(), "solid density");
+// The engine's member an attribute holds, read and written as the attribute's double.
+template <auto... Path> double get_setting(const SimulationSettings& settings) {
+  const auto& value = (settings.*....*Path);
+  if constexpr (std::is_enum_v<std::remove_cvref_t<decltype(value)>>) {
+    return static_cast<double>(static_cast<int>(value));
+  } else {
+    return static_cast<double>(value);
+  }
+}
+template <auto... Path> void set_setting(SimulationSettings& settings, double stored) {
+  auto& value = (settings.*....*Path);
+  using Value = std::remove_cvref_t<decltype(value)>;
+  if constexpr (std::is_enum_v<Value>) {
+    value = static_cast<Value>(static_cast<int>(stored));
+  } else {
+    value = static_cast<Value>(stored);
+  }
+}
+
+using Real = double& (*)(DemConfig&);
+using Integer = std::int64_t& (*)(DemConfig&);
+using Boolean = bool& (*)(DemConfig&);
+using Text = std::string& (*)(DemConfig&);
+using Reals = std::vector<double>& (*)(DemConfig&);
+using Choice = model::HertzRadius& (*)(DemConfig&);
+using Seed = std::uint64_t& (*)(DemConfig&);
+using ConfigMember = std::variant<std::monostate, Real, Integer, Boolean, Text, Reals, Choice, Seed>;
+
+// A configured value whose key is in another unit than its member: key = member * scale / divisor,
+// member = key * divisor / scale (degrees on the key, radians in the member).
+struct KeyUnit {
+  double scale = 1;
+  double divisor = 1;
+};
+
+// A stored value in another unit than its key: the skin is configured in D50 and stored in metres.
+struct StoredUnit {
+  double (*from_config)(double configured, const DemConfig& config);
+  double (*to_config)(double stored, const DemConfig& config);
+};
+
+struct Parameter {
+  std::string_view key = {}; ///< configuration key ("" for Binding::stored_only)
+  ConfigMember config = {};
+  std::string_view unit = {}; ///< of the key's value
+  Range range = {};           ///< of the key's value
+  std::string_view help = {};
+  std::string_view attribute = {}; ///< checkpoint /parameters attribute ("": not stored)
+  double (*get)(const SimulationSettings&) = nullptr;
+  void (*set)(SimulationSettings&, double) = nullptr;
+  Binding binding = Binding::config_only;
+  std::string_view stored_unit = {}; ///< of the attribute, when not the key's
+  std::optional<Range> stored_range = {};
+  std::optional<KeyUnit> key_unit = {};
+  std::optional<StoredUnit> stored_as = {};
+  std::size_t min_count = 0;           ///< list keys: fewest elements
+  std::vector<std::string> words = {}; ///< choice keys: the words, in enum order
+};
+
+constexpr double degrees_per_radian = 180.0;
+constexpr double radian_divisor = std::numbers::pi;
+
+// Every DEM parameter, in the order --print-config lists them.
+const std::vector<Parameter>& parameters() {
+  using D = DemConfig;
+  using S = SimulationSettings;
+  using Material = model::ContactMaterial;
+  using Servo = model::ServoSettings;
+  static const std::vector<Parameter> table{
+      {.key = "dem.seed",
+       .config = &member<&D::seed>,
+       .range = Range::non_negative(),
+       .help = "seed of every random stream"},
+      {.key = "dem.output_dir",
+       .config = &member<&D::output_dir>,
+       .help = "folder for checkpoints and history"},
+      {.key = "dem.particles.count",
+       .config = &member<&D::particles, &ParticleConfig::count>,
+       .range = Range::closed(2, 1e9),
+       .help = "number of particles"},
+      // Particle diameters in metres, from a nanometre to a kilometre: far smaller sizes underflow
+      // the volumes and inertias (d^5) that the simulation needs.
+      {.key = "dem.particles.diameter_min",
+       .config = &member<&D::particles, &ParticleConfig::diameter_min>,
+       .unit = units::metre,
+       .range = Range::closed(1e-9, 1e3),
+       .help = "smallest diameter (mid-plane diameter for ovoids)"},
+      {.key = "dem.particles.diameter_max",
+       .config = &member<&D::particles, &ParticleConfig::diameter_max>,
+       .unit = units::metre,
+       .range = Range::closed(1e-9, 1e3),
+       .help = "largest diameter"},
+      {.key = "dem.particles.d50",
+       .config = &member<&D::particles, &ParticleConfig::d50>,
+       .unit = units::metre,
+       .range = Range::closed(1e-9, 1e3),
+       .help = "median diameter by volume",
+       .attribute = h5::parameter_name::d50,
+       .get = &get_setting<&S::d50>,
+       .set = &set_setting<&S::d50>,
+       .binding = Binding::fixed},
+      {.key = "dem.particles.aspect_ratio",
+       .config = &member<&D::particles, &ParticleConfig::aspect_ratio>,
+       .unit = units::none,
+       .range = Range::open_closed(0.2, 1.0),
+       .help = "axial height / mid-plane diameter (paper: 1, 0.8, 0.625, 0.5)"},
+      {.key = "dem.particles.splice_angle_degrees",
+       .config = &member<&D::particles, &ParticleConfig::splice_angle>,
+       .unit = units::none,
+       .range = Range::open(0.0, 90.0),
+       .help = "ovoid splice angle beta between axis and surface normal where cap meets band, in degrees "
+               "(Kuhn's OVAL: 45); must be below 2 atan(aspect_ratio)",
+       .attribute = h5::parameter_name::splice_angle,
+       .get = &get_setting<&S::splice_angle>,
+       .set = &set_setting<&S::splice_angle>,
+       .binding = Binding::fixed,
+       .stored_unit = units::radian,
+       .stored_range = Range::open(0.0, std::numbers::pi / 2),
+       .key_unit = KeyUnit{degrees_per_radian, radian_divisor}},
+      {.key = "dem.particles.density",
+       .config = &member<&D::particles, &ParticleConfig::density>,
+       .unit = units::density,
+       .range = Range::positive(),
+       .help = "solid density",
+       .attribute = h5::parameter_name::density,
+       .get = &get_setting<&S::density>,
+       .set = &set_setting<&S::density>,
+       .binding = Binding::fixed},
+      {.key = "dem.material.shear_modulus",
+       .config = &member<&D::material, &MaterialConfig::shear_modulus>,
+       .unit = units::pascal,
+       .range = Range::positive(),
+       .help = "particle shear modulus G",
+       .attribute = "shear_modulus",
+       .get = &get_setting<&S::material, &Material::shear_modulus>,
+       .set = &set_setting<&S::material, &Material::shear_modulus>,
+       .binding = Binding::fixed},
+      {.key = "dem.material.poisson_ratio",
+       .config = &member<&D::material, &MaterialConfig::poisson_ratio>,
+       .unit = units::none,
+       .range = Range::open(-1.0, 0.5),
+       .help = "particle Poisson ratio",
+       .attribute = "poisson_ratio",
+       .get = &get_setting<&S::material, &Material::poisson_ratio>,
+       .set = &set_setting<&S::material, &Material::poisson_ratio>,
+       .binding = Binding::fixed},
+      {.key = "dem.material.friction",
+       .config = &member<&D::material, &MaterialConfig::friction>,
+       .unit = units::none,
+       .range = Range::non_negative(),
+       .help = "inter-particle friction for consolidation and loading",
+       .attribute = "friction",
+       .get = &get_setting<&S::material, &Material::friction>,
+       .set = &set_setting<&S::material, &Material::friction>,
+       .binding = Binding::resumed},
+      {.key = "dem.material.friction_prepare",
+       .config = &member<&D::material, &MaterialConfig::friction_prepare>,
+       .unit = units::none,
+       .range = Range::non_negative(),
+       .help = "inter-particle friction during compaction cycles"},
+      {.key = "dem.material.hertz_radius",
+       .config = &member<&D::material, &MaterialConfig::hertz_radius>,
+       .help = "ovoid Hertz radius: 'halfwidth' R* = a_i a_j / (a_i + a_j) as in Kuhn's code, or 'curvature' "
+               "(elliptic Hertz from the surface curvatures)",
+       .attribute = "hertz_radius_curvature",
+       .get = &get_setting<&S::hertz_radius>,
+       .set = &set_setting<&S::hertz_radius>,
+       .binding = Binding::fixed,
+       .stored_unit = units::none,
+       .stored_range = Range::closed(0.0, 1.0),
+       .words = {"halfwidth", "curvature"}},
+      {.key = "dem.integration.time_step_fraction",
+       .config = &member<&D::integration, &IntegrationConfig::time_step_fraction>,
+       .unit = units::none,
+       .range = Range::open_closed(0.0, 1.0),
+       .help = "time step as a fraction of the Rayleigh critical step of the smallest particle"},
+      {.key = "dem.integration.time_step",
+       .config = &member<&D::integration, &IntegrationConfig::time_step>,
+       .unit = units::second,
+       .range = Range::non_negative(),
+       .help = "explicit time step (0: from time_step_fraction); refused above the critical step"},
+      {.key = "dem.integration.damping",
+       .config = &member<&D::integration, &IntegrationConfig::damping>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 1.0),
+       .help = "viscous contact damping ratio during loading",
+       .attribute = "damping_ratio",
+       .get = &get_setting<&S::material, &Material::damping_ratio>,
+       .set = &set_setting<&S::material, &Material::damping_ratio>,
+       .binding = Binding::resumed},
+      {.key = "dem.integration.global_damping",
+       .config = &member<&D::integration, &IntegrationConfig::global_damping>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 10.0),
+       .help = "global damping of the fluctuating motion during loading, as a fraction of critical for the "
+               "mean particle on the mean contact stiffness",
+       .attribute = "global_damping",
+       .get = &get_setting<&S::global_damping>,
+       .set = &set_setting<&S::global_damping>,
+       .binding = Binding::resumed},
+      {.key = "dem.integration.skin",
+       .config = &member<&D::integration, &IntegrationConfig::skin>,
+       .unit = units::none,
+       .range = Range::open_closed(0.0, 1.0),
+       .help = "neighbour-list skin in units of D50",
+       .attribute = "skin",
+       .get = &get_setting<&S::skin>,
+       .set = &set_setting<&S::skin>,
+       .binding = Binding::fixed,
+       .stored_unit = units::metre,
+       .stored_range = Range::positive(),
+       .stored_as = StoredUnit{[](double skin, const DemConfig& c) { return skin * c.particles.d50; },
+                               [](double skin, const DemConfig& c) { return skin / c.particles.d50; }}},
+      {.key = "dem.integration.control_interval",
+       .config = &member<&D::integration, &IntegrationConfig::control_interval>,
+       .range = Range::closed(1, 1e6),
+       .help = "steps between stress measurements and servo updates",
+       .attribute = "control_interval",
+       .get = &get_setting<&S::control_interval>,
+       .set = &set_setting<&S::control_interval>,
+       .binding = Binding::resumed,
+       .stored_unit = units::none},
+      {.key = "dem.integration.servo_gain",
+       .config = &member<&D::integration, &IntegrationConfig::servo_gain>,
+       .unit = units::none,
+       .range = Range::open_closed(0.0, 1.0),
+       .help = "fraction of the stress error removed per servo update",
+       .attribute = "servo_gain",
+       .get = &get_setting<&S::servo, &Servo::gain>,
+       .set = &set_setting<&S::servo, &Servo::gain>,
+       .binding = Binding::resumed},
+      {.attribute = "servo_max_rate",
+       .get = &get_setting<&S::servo, &Servo::max_rate>,
+       .set = &set_setting<&S::servo, &Servo::max_rate>,
+       .binding = Binding::stored_only,
+       .stored_unit = units::per_second,
+       .stored_range = Range::non_negative()}, // 0: no cap
+      {.attribute = "servo_integral_intervals",
+       .get = &get_setting<&S::servo, &Servo::integral_intervals>,
+       .set = &set_setting<&S::servo, &Servo::integral_intervals>,
+       .binding = Binding::stored_only,
+       .stored_unit = units::none,
+       .stored_range = Range::positive()},
+      {.key = "dem.integration.explosion_overlap",
+       .config = &member<&D::integration, &IntegrationConfig::explosion_overlap>,
+       .unit = units::none,
+       .range = Range::open(0.0, 1.0),
+       .help = "stop when an overlap exceeds this fraction of a radius",
+       .attribute = "explosion_overlap",
+       .get = &get_setting<&S::explosion_overlap>,
+       .set = &set_setting<&S::explosion_overlap>,
+       .binding = Binding::fixed},
+      {.key = "dem.prepare.cell_aspect",
+       .config = &member<&D::prepare, &PrepareConfig::cell_aspect>,
+       .unit = units::none,
+       .range = Range::positive(),
+       .help = "cell proportions L1:L2:L3",
+       .min_count = 3},
+      {.key = "dem.prepare.initial_solid_fraction",
+       .config = &member<&D::prepare, &PrepareConfig::initial_solid_fraction>,
+       .unit = units::none,
+       .range = Range::open(0.0, 0.4),
+       .help = "solid fraction of the sparse start, counted with bounding spheres (half-width radius)"},
+      {.key = "dem.prepare.cycles",
+       .config = &member<&D::prepare, &PrepareConfig::cycles>,
+       .range = Range::closed(1, 1000),
+       .help = "most compaction cycles (paper: 14); stops at the first that seizes at or below the target"},
+      {.key = "dem.prepare.target_void_ratio",
+       .config = &member<&D::prepare, &PrepareConfig::target_void_ratio>,
+       .unit = units::none,
+       .range = Range::positive(),
+       .help = "keep the assembly nearest this void ratio"},
+      {.key = "dem.prepare.void_ratio_tolerance",
+       .config = &member<&D::prepare, &PrepareConfig::void_ratio_tolerance>,
+       .unit = units::none,
+       .range = Range::positive(),
+       .help = "largest |e - target_void_ratio| of the prepared assembly; beyond it prepare fails (exit 5)"},
+      {.key = "dem.prepare.confining_pressure",
+       .config = &member<&D::prepare, &PrepareConfig::confining_pressure>,
+       .unit = units::pascal,
+       .range = Range::positive(),
+       .help = "isotropic consolidation pressure p0"},
+      {.key = "dem.prepare.inertial_number",
+       .config = &member<&D::prepare, &PrepareConfig::inertial_number>,
+       .unit = units::none,
+       .range = Range::open(0.0, 1.0),
+       .help = "compaction and consolidation rate as I at p0"},
+      {.key = "dem.prepare.damping",
+       .config = &member<&D::prepare, &PrepareConfig::damping>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 1.0),
+       .help = "contact damping ratio while compacting"},
+      {.key = "dem.prepare.global_damping",
+       .config = &member<&D::prepare, &PrepareConfig::global_damping>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 10.0),
+       .help = "global damping ratio of the fluctuating motion while compacting"},
+      {.key = "dem.prepare.seize_stress",
+       .config = &member<&D::prepare, &PrepareConfig::seize_stress>,
+       .unit = units::pascal,
+       .range = Range::positive(),
+       .help = "mean stress at which a compacting assembly counts as seized"},
+      {.key = "dem.prepare.seize_force_ratio",
+       .config = &member<&D::prepare, &PrepareConfig::seize_force_ratio>,
+       .unit = units::none,
+       .range = Range::open(0.0, 1.0),
+       .help = "unbalanced-force ratio below which a held assembly above the seize stress has seized"},
+      {.key = "dem.prepare.agitation_speed",
+       .config = &member<&D::prepare, &PrepareConfig::agitation_speed>,
+       .unit = units::none,
+       .range = Range::non_negative(),
+       .help = "rms random speed between cycles, in sqrt(p0/rho)"},
+      {.key = "dem.prepare.consolidation_tolerance",
+       .config = &member<&D::prepare, &PrepareConfig::consolidation_tolerance>,
+       .unit = units::none,
+       .range = Range::open(0.0, 0.5),
+       .help = "|p - p0|/p0 to end consolidation"},
+      {.key = "dem.prepare.refinement_cycles",
+       .config = &member<&D::prepare, &PrepareConfig::refinement_cycles>,
+       .range = Range::closed(0, 100),
+       .help = "most re-runs of the cycle that steps across the target (plus the consolidation's compaction) "
+               "with a weaker agitation"},
+      {.key = "dem.load.inertial_number",
+       .config = &member<&D::load, &LoadConfig::inertial_number>,
+       .unit = units::none,
+       .range = Range::open(0.0, 1.0),
+       .help = "I = strain rate * D50 * sqrt(density / p)"},
+      {.key = "dem.load.final_strain",
+       .config = &member<&D::load, &LoadConfig::final_strain>,
+       .unit = units::none,
+       .range = Range::open_closed(0.0, 0.9),
+       .help = "final compressive strain -eps11"},
+      {.key = "dem.load.mean_stress",
+       .config = &member<&D::load, &LoadConfig::mean_stress>,
+       .unit = units::pascal,
+       .range = Range::positive(),
+       .help = "mean stress held during loading"},
+      {.key = "dem.load.checkpoint_strains",
+       .config = &member<&D::load, &LoadConfig::checkpoint_strains>,
+       .unit = units::none,
+       .range = Range::open_closed(0.0, 0.9),
+       .help = "compressive strains -eps11 at which checkpoints are written"},
+      {.key = "dem.load.history_interval",
+       .config = &member<&D::load, &LoadConfig::history_interval>,
+       .unit = units::none,
+       .range = Range::positive(),
+       .help = "strain between history rows"},
+      {.key = "dem.equilibrium.tolerance",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::tolerance>,
+       .unit = units::none,
+       .range = Range::open(0.0, 1.0),
+       .help = "unbalanced-force ratio (mean |net force| / mean |contact force|) below which a state counts "
+               "as static"},
+      {.key = "dem.equilibrium.stress_tolerance",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::stress_tolerance>,
+       .unit = units::none,
+       .range = Range::open(0.0, 0.5),
+       .help = "|p - p_target| / p_target required together with the force tolerance"},
+      {.key = "dem.equilibrium.damping",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::damping>,
+       .unit = units::none,
+       .range = Range::open_closed(0.0, 10.0),
+       .help = "global damping ratio while relaxing to equilibrium"},
+      {.key = "dem.equilibrium.verify_steps",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::verify_steps>,
+       .range = Range::closed(0, 1e9),
+       .help = "time steps the tolerances must then keep holding with the damping of the run (an unstable "
+               "balance fails this and relaxes on)"},
+      {.key = "dem.equilibrium.max_steps",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::max_steps>,
+       .range = Range::closed(1, 1e10),
+       .help = "most time steps of one relaxation; beyond it the run stops (exit 5)"},
+      {.key = "dem.equilibrium.at_checkpoints",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::at_checkpoints>,
+       .help = "relax to equilibrium (cell held, p servoed) before each load checkpoint"},
+      {.key = "dem.load.increment",
+       .config = &member<&D::load, &LoadConfig::increment>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 0.1),
+       .help = "strain per loading increment, each followed by a relaxation to increment_tolerance (Kuhn's "
+               "OVAL practice); 0: continuous loading"},
+      {.key = "dem.load.increment_tolerance",
+       .config = &member<&D::load, &LoadConfig::increment_tolerance>,
+       .unit = units::none,
+       .range = Range::open(0.0, 1.0),
+       .help = "unbalanced-force ratio that ends the relaxation after each increment (OVAL: 0.01)"},
+  };
+  return table;
+}
+
+// A real, integer or choice member as a double (a choice as its word's index).
+double member_value(const Parameter& parameter, const DemConfig& config) {
+  DemConfig& readable =
+      const_cast<DemConfig&>(config); // the accessors serve the reader too; nothing is written
+  return std::visit(
+      [&](auto access) -> double {
+        using Access = decltype(access);
+        if constexpr (std::is_same_v<Access, Real> || std::is_same_v<Access, Integer>) {
+          return static_cast<double>(access(readable));
+        } else if constexpr (std::is_same_v<Access, Choice>) {
+          return static_cast<double>(static_cast<int>(access(readable)));
+        } else {
+          check_invariant(false, "a stored parameter is a real, an integer or a choice");
+          return 0.0;
+        }
+      },
+      parameter.config);
+}
+
+void set_member_value(const Parameter& parameter, DemConfig& config, double value) {
+  std::visit(
+      [&](auto access) {
+        using Access = decltype(access);
+        if constexpr (std::is_same_v<Access, Real>) {
+          access(config) = value;
+        } else if constexpr (std::is_same_v<Access, Integer>) {
+          access(config) = static_cast<std::int64_t>(value);
+        } else if constexpr (std::is_same_v<Access, Choice>) {
+          access(config) = static_cast<model::HertzRadius>(static_cast<int>(value));
+        }
+      },
+      parameter.config);
+}
+
+// The unit conversions between the member, its key and its attribute.
+double stored_from_member(const Parameter& parameter, double member, const DemConfig& config) {
+  return parameter.stored_as ? parameter.stored_as->from_config(member, config) : member;
+}
+double member_from_stored(const Parameter& parameter, double stored, const DemConfig& config) {
+  return parameter.stored_as ? parameter.stored_as->to_config(stored, config) : stored;
+}
+double key_from_member(const Parameter& parameter, double member) {
+  return parameter.key_unit ? member * parameter.key_unit->scale / parameter.key_unit->divisor : member;
+}
+double member_from_key(const Parameter& parameter, double key) {
+  return parameter.key_unit ? key * parameter.key_unit->divisor / parameter.key_unit->scale : key;
+}
+
+std::string shown(const Parameter& parameter, double value_in_key_unit) {
+  if (!parameter.words.empty()) return parameter.words.at(static_cast<std::size_t>(value_in_key_unit));
+  const bool unitless = parameter.unit.empty() || parameter.unit == units::none;
+  return fmt::format("{:g}{}", value_in_key_unit,
+                     unitless ? std::string() : fmt::format(" {}", parameter.unit));
+}
+
+std::string toml_value(const Parameter& parameter, double value_in_key_unit) {
+  if (!parameter.words.empty())
+    return fmt::format("\"{}\"", parameter.words.at(static_cast<std::size_t>(value_in_key_unit)));
+  if (std::holds_alternative<Integer>(parameter.config))
+    return fmt::format("{}", static_cast<std::int64_t>(value_in_key_unit));
+  return fmt::format("{}", value_in_key_unit);
+}
+
+void read_parameter(const Parameter& parameter, config::Reader& reader, DemConfig& config) {
+  std::visit(
+      [&](auto access) {
+        using Access = decltype(access);
+        if constexpr (std::is_same_v<Access, Real>) {
+          double& value = access(config);
+          if (parameter.key_unit) {
+            const KeyUnit& unit = *parameter.key_unit;
+            value = reader.real(parameter.key, value * unit.scale / unit.divisor, parameter.unit,
+                                parameter.range, parameter.help) *
+                    unit.divisor / unit.scale;
+          } else {
+            value = reader.real(parameter.key, value, parameter.unit, parameter.range, parameter.help);
+          }
+        } else if constexpr (std::is_same_v<Access, Integer>) {
+          std::int64_t& value = access(config);
+          value = reader.integer(parameter.key, value, parameter.range, parameter.help);
+        } else if constexpr (std::is_same_v<Access, Seed>) {
+          std::uint64_t& value = access(config);
+          value = static_cast<std::uint64_t>(reader.integer(parameter.key, static_cast<std::int64_t>(value),
+                                                            parameter.range, parameter.help));
+        } else if constexpr (std::is_same_v<Access, Boolean>) {
+          bool& value = access(config);
+          value = reader.boolean(parameter.key, value, parameter.help);
+        } else if constexpr (std::is_same_v<Access, Text>) {
+          std::string& value = access(config);
+          value = reader.text(parameter.key, value, parameter.help);
+        } else if constexpr (std::is_same_v<Access, Reals>) {
+          std::vector<double>& value = access(config);
+          value = reader.reals(parameter.key, value, parameter.unit, parameter.range, parameter.min_count,
+                               parameter.help);
+        } else if constexpr (std::is_same_v<Access, Choice>) {
+          auto& value = access(config);
+          const std::string word =
+              reader.choice(parameter.key, parameter.words.at(static_cast<std::size_t>(value)),
+                            parameter.words, parameter.help);
+          value = static_cast<std::remove_reference_t<decltype(value)>>(
+              std::find(parameter.words.begin(), parameter.words.end(), word) - parameter.words.begin());
+        }
+      },
+      parameter.config);
+}
+
+// The checks of keys against each other, after every key is read.
+void check_consistency(const DemConfig& c) {
+  const auto& p = c.particles;
   if (p.aspect_ratio < 1.0) {
     const double limit = 2.0 * std::atan(p.aspect_ratio);
     require_input(p.splice_angle < limit,
@@ -50,101 +538,13 @@ DemConfig read_dem_config(config::Reader& reader) {
       p.diameter_min < p.d50 && p.d50 < p.diameter_max,
       fmt::format("config: need dem.particles.diameter_min < d50 < diameter_max, got {} < {} < {} m",
                   p.diameter_min, p.d50, p.diameter_max));
-
-  auto& m = c.material;
-  m.shear_modulus = reader.real("dem.material.shear_modulus", m.shear_modulus, units::pascal,
-                                ranges::shear_modulus(), "particle shear modulus G");
-  m.poisson_ratio = reader.real("dem.material.poisson_ratio", m.poisson_ratio, units::none,
-                                ranges::poisson_ratio(), "particle Poisson ratio");
-  m.friction = reader.real("dem.material.friction", m.friction, units::none, ranges::friction(),
-                           "inter-particle friction for consolidation and loading");
-  m.friction_prepare = reader.real("dem.material.friction_prepare", m.friction_prepare, units::none,
-                                   ranges::friction(), "inter-particle friction during compaction cycles");
-  m.hertz_radius =
-      reader.choice("dem.material.hertz_radius", "halfwidth", {"halfwidth", "curvature"},
-                    "ovoid Hertz radius: 'halfwidth' R* = a_i a_j / (a_i + a_j) as in Kuhn's "
-                    "code, or 'curvature' (elliptic Hertz from the surface curvatures)") == "curvature"
-          ? model::HertzRadius::curvature
-          : model::HertzRadius::halfwidth;
-
-  auto& i = c.integration;
-  i.time_step_fraction = reader.real(
-      "dem.integration.time_step_fraction", i.time_step_fraction, units::none, Range::open_closed(0.0, 1.0),
-      "time step as a fraction of the Rayleigh critical step of the smallest particle");
-  i.time_step =
-      reader.real("dem.integration.time_step", i.time_step, units::second, Range::non_negative(),
-                  "explicit time step (0: from time_step_fraction); refused above the critical step");
-  i.damping = reader.real("dem.integration.damping", i.damping, units::none, ranges::contact_damping(),
-                          "viscous contact damping ratio during loading");
-  i.global_damping =
-      reader.real("dem.integration.global_damping", i.global_damping, units::none, ranges::global_damping(),
-                  "global damping of the fluctuating motion during loading, as a fraction of "
-                  "critical for the mean particle on the mean contact stiffness");
-  i.skin = reader.real("dem.integration.skin", i.skin, units::none, Range::open_closed(0.0, 1.0),
-                       "neighbour-list skin in units of D50");
-  i.control_interval =
-      reader.integer("dem.integration.control_interval", i.control_interval, ranges::control_interval(),
-                     "steps between stress measurements and servo updates");
-  i.servo_gain = reader.real("dem.integration.servo_gain", i.servo_gain, units::none, ranges::servo_gain(),
-                             "fraction of the stress error removed per servo update");
-  i.explosion_overlap =
-      reader.real("dem.integration.explosion_overlap", i.explosion_overlap, units::none,
-                  ranges::explosion_overlap(), "stop when an overlap exceeds this fraction of a radius");
-
-  auto& pr = c.prepare;
-  pr.cell_aspect = reader.reals("dem.prepare.cell_aspect", pr.cell_aspect, units::none, Range::positive(), 3,
-                                "cell proportions L1:L2:L3");
-  require_input(pr.cell_aspect.size() == 3,
+  require_input(c.prepare.cell_aspect.size() == 3,
                 fmt::format("config key 'dem.prepare.cell_aspect': {} values given, expected exactly 3",
-                            pr.cell_aspect.size()));
-  pr.initial_solid_fraction = reader.real(
-      "dem.prepare.initial_solid_fraction", pr.initial_solid_fraction, units::none, Range::open(0.0, 0.4),
-      "solid fraction of the sparse start, counted with bounding spheres (half-width radius)");
-  pr.cycles = reader.integer(
-      "dem.prepare.cycles", pr.cycles, Range::closed(1, 1000),
-      "most compaction cycles (paper: 14); stops at the first that seizes at or below the target");
-  pr.target_void_ratio = reader.real("dem.prepare.target_void_ratio", pr.target_void_ratio, units::none,
-                                     Range::positive(), "keep the assembly nearest this void ratio");
-  pr.void_ratio_tolerance = reader.real(
-      "dem.prepare.void_ratio_tolerance", pr.void_ratio_tolerance, units::none, Range::positive(),
-      "largest |e - target_void_ratio| of the prepared assembly; beyond it prepare fails (exit 5)");
-  pr.confining_pressure = reader.real("dem.prepare.confining_pressure", pr.confining_pressure, units::pascal,
-                                      Range::positive(), "isotropic consolidation pressure p0");
-  pr.inertial_number = reader.real("dem.prepare.inertial_number", pr.inertial_number, units::none,
-                                   Range::open(0.0, 1.0), "compaction and consolidation rate as I at p0");
-  pr.damping = reader.real("dem.prepare.damping", pr.damping, units::none, ranges::contact_damping(),
-                           "contact damping ratio while compacting");
-  pr.global_damping =
-      reader.real("dem.prepare.global_damping", pr.global_damping, units::none, ranges::global_damping(),
-                  "global damping ratio of the fluctuating motion while compacting");
-  pr.seize_stress = reader.real("dem.prepare.seize_stress", pr.seize_stress, units::pascal, Range::positive(),
-                                "mean stress at which a compacting assembly counts as seized");
-  require_input(pr.seize_stress < pr.confining_pressure,
+                            c.prepare.cell_aspect.size()));
+  require_input(c.prepare.seize_stress < c.prepare.confining_pressure,
                 "config: dem.prepare.seize_stress must be below dem.prepare.confining_pressure");
-  pr.seize_force_ratio =
-      reader.real("dem.prepare.seize_force_ratio", pr.seize_force_ratio, units::none, Range::open(0.0, 1.0),
-                  "unbalanced-force ratio below which a held assembly above the seize stress has seized");
-  pr.agitation_speed = reader.real("dem.prepare.agitation_speed", pr.agitation_speed, units::none,
-                                   Range::non_negative(), "rms random speed between cycles, in sqrt(p0/rho)");
-  pr.consolidation_tolerance =
-      reader.real("dem.prepare.consolidation_tolerance", pr.consolidation_tolerance, units::none,
-                  Range::open(0.0, 0.5), "|p - p0|/p0 to end consolidation");
-  pr.refinement_cycles = reader.integer(
-      "dem.prepare.refinement_cycles", pr.refinement_cycles, Range::closed(0, 100),
-      "most re-runs of the cycle that steps across the target (plus the consolidation's compaction) with a "
-      "weaker agitation");
-
-  auto& l = c.load;
-  l.inertial_number = reader.real("dem.load.inertial_number", l.inertial_number, units::none,
-                                  Range::open(0.0, 1.0), "I = strain rate * D50 * sqrt(density / p)");
-  l.final_strain = reader.real("dem.load.final_strain", l.final_strain, units::none,
-                               Range::open_closed(0.0, 0.9), "final compressive strain -eps11");
-  l.mean_stress = reader.real("dem.load.mean_stress", l.mean_stress, units::pascal, Range::positive(),
-                              "mean stress held during loading");
-  l.checkpoint_strains =
-      reader.reals("dem.load.checkpoint_strains", {}, units::none, Range::open_closed(0.0, 0.9), 0,
-                   "compressive strains -eps11 at which checkpoints are written");
   // load_NNN.h5 is numbered in list order and the loading passes each strain once.
+  const auto& l = c.load;
   for (std::size_t k = 0; k < l.checkpoint_strains.size(); ++k) {
     const double strain = l.checkpoint_strains[k];
     if (k > 0 && strain <= l.checkpoint_strains[k - 1]) {
@@ -159,33 +559,176 @@ DemConfig read_dem_config(config::Reader& reader) {
                                    k, strain, l.final_strain));
     }
   }
-  l.history_interval = reader.real("dem.load.history_interval", l.history_interval, units::none,
-                                   Range::positive(), "strain between history rows");
+}
 
-  auto& e = c.equilibrium;
-  e.tolerance = reader.real("dem.equilibrium.tolerance", e.tolerance, units::none, Range::open(0.0, 1.0),
-                            "unbalanced-force ratio (mean |net force| / mean |contact force|) below which "
-                            "a state counts as static");
-  e.stress_tolerance =
-      reader.real("dem.equilibrium.stress_tolerance", e.stress_tolerance, units::none, Range::open(0.0, 0.5),
-                  "|p - p_target| / p_target required together with the force tolerance");
-  e.damping = reader.real("dem.equilibrium.damping", e.damping, units::none, Range::open_closed(0.0, 10.0),
-                          "global damping ratio while relaxing to equilibrium");
-  e.verify_steps = reader.integer("dem.equilibrium.verify_steps", e.verify_steps, Range::closed(0, 1e9),
-                                  "time steps the tolerances must then keep holding with the damping of the "
-                                  "run (an unstable balance fails this and relaxes on)");
-  e.max_steps = reader.integer("dem.equilibrium.max_steps", e.max_steps, Range::closed(1, 1e10),
-                               "most time steps of one relaxation; beyond it the run stops (exit 5)");
-  e.at_checkpoints =
-      reader.boolean("dem.equilibrium.at_checkpoints", e.at_checkpoints,
-                     "relax to equilibrium (cell held, p servoed) before each load checkpoint");
-  l.increment = reader.real("dem.load.increment", l.increment, units::none, Range::closed(0.0, 0.1),
-                            "strain per loading increment, each followed by a relaxation to "
-                            "increment_tolerance (Kuhn's OVAL practice); 0: continuous loading");
-  l.increment_tolerance =
-      reader.real("dem.load.increment_tolerance", l.increment_tolerance, units::none, Range::open(0.0, 1.0),
-                  "unbalanced-force ratio that ends the relaxation after each increment (OVAL: 0.01)");
-  return c;
+bool differs(double configured, double stored) {
+  return std::abs(configured - stored) > 1e-9 * std::max(std::abs(configured), std::abs(stored));
+}
+
+} // namespace
+
+DemConfig read_dem_config(config::Reader& reader) {
+  DemConfig config;
+  for (const Parameter& parameter : parameters())
+    if (!parameter.key.empty()) read_parameter(parameter, reader, config);
+  check_consistency(config);
+  return config;
+}
+
+SimulationSettings settings_from_config(const DemConfig& config, double smallest_diameter) {
+  SimulationSettings settings;
+  for (const Parameter& parameter : parameters())
+    if (parameter.set != nullptr && !parameter.key.empty())
+      parameter.set(settings, stored_from_member(parameter, member_value(parameter, config), config));
+  const double critical = model::rayleigh_time_step(
+      model::volume_equivalent_radius(0.5 * smallest_diameter, config.particles.aspect_ratio,
+                                      settings.splice_angle),
+      settings.density, settings.material);
+  settings.time_step = config.integration.time_step > 0 ? config.integration.time_step
+                                                        : config.integration.time_step_fraction * critical;
+  model::require_stable_time_step(settings.time_step, critical);
+  return settings;
+}
+
+std::vector<h5::Parameter> stored_parameters(const SimulationSettings& settings) {
+  std::vector<h5::Parameter> stored;
+  for (const Parameter& parameter : parameters()) {
+    if (parameter.attribute.empty()) continue;
+    const std::string_view unit = parameter.stored_unit.empty() ? parameter.unit : parameter.stored_unit;
+    stored.push_back({std::string(parameter.attribute), parameter.get(settings), std::string(unit)});
+  }
+  return stored;
+}
+
+SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path) {
+  SimulationSettings settings;
+  for (const Parameter& parameter : parameters()) {
+    if (parameter.attribute.empty()) continue;
+    const double value = h5::parameter(checkpoint, std::string(parameter.attribute), path);
+    const Range range = parameter.stored_range.value_or(parameter.range);
+    if (!range.contains(value)) {
+      throw FileError(fmt::format("{}: /parameters (attribute '{}'): value {:g} is out of range, expected {}",
+                                  path, parameter.attribute, value, range.describe()));
+    }
+    parameter.set(settings, value);
+  }
+  if (!(checkpoint.time_step > 0.0))
+    throw FileError(
+        fmt::format("{}: / (attribute time_step): value {:g}, expected > 0", path, checkpoint.time_step));
+  settings.time_step = checkpoint.time_step;
+  return settings;
+}
+
+void adopt_checkpoint_values(DemConfig& config, config::Reader& reader, const h5::Checkpoint& checkpoint,
+                             const std::string& path) {
+  const SimulationSettings stored = settings_from_checkpoint(checkpoint, path);
+  std::string mismatches;
+  // The stored value replaces the configured one; a configured one that differs is listed.
+  const auto adopt = [&](std::string_view key, bool same, const std::string& mismatch, std::string value_toml,
+                         std::string_view note) {
+    if (reader.given(key) && !same) mismatches += fmt::format("\n  {} = {}", key, mismatch);
+    reader.replace(key, std::move(value_toml), note);
+  };
+  constexpr std::string_view from_file = "from the input checkpoint";
+  // What the particle rows fix: their count and extreme sizes, and one aspect ratio for all.
+  const auto& rows = checkpoint.particles;
+  auto& pc = config.particles;
+  const auto n_rows = static_cast<std::int64_t>(rows.size());
+  adopt("dem.particles.count", pc.count == n_rows,
+        fmt::format("{}, the checkpoint has {} particles", pc.count, n_rows), std::to_string(n_rows),
+        from_file);
+  pc.count = n_rows;
+  // A size bound is kept when every stored diameter lies within it.
+  const auto [smallest, largest] = std::minmax_element(rows.diameter.begin(), rows.diameter.end());
+  adopt("dem.particles.diameter_min", *smallest >= pc.diameter_min * (1 - 1e-9),
+        fmt::format("{:g} m, the checkpoint's diameters reach {:g} m", pc.diameter_min, *smallest),
+        fmt::format("{}", *smallest), "from the input checkpoint (its extreme diameter)");
+  pc.diameter_min = *smallest;
+  adopt("dem.particles.diameter_max", *largest <= pc.diameter_max * (1 + 1e-9),
+        fmt::format("{:g} m, the checkpoint's diameters reach {:g} m", pc.diameter_max, *largest),
+        fmt::format("{}", *largest), "from the input checkpoint (its extreme diameter)");
+  pc.diameter_max = *largest;
+  // One aspect ratio for every particle is what prepare makes; a mixed file has no single value.
+  const auto [flattest, roundest] = std::minmax_element(rows.aspect_ratio.begin(), rows.aspect_ratio.end());
+  if (*flattest == *roundest) {
+    adopt("dem.particles.aspect_ratio", !(std::abs(pc.aspect_ratio - *flattest) > 1e-9 * *flattest),
+          fmt::format("{:g}, the checkpoint has {:g}", pc.aspect_ratio, *flattest),
+          fmt::format("{}", *flattest), from_file);
+    pc.aspect_ratio = *flattest;
+  }
+  // What the stored settings fix, in table order (d50 before the skin it scales), compared in
+  // the key's unit to 1e-9.
+  for (const Parameter& parameter : parameters()) {
+    if (parameter.binding != Binding::fixed) continue;
+    const double stored_key =
+        key_from_member(parameter, member_from_stored(parameter, parameter.get(stored), config));
+    const double configured_key = key_from_member(parameter, member_value(parameter, config));
+    adopt(parameter.key, !(std::abs(configured_key - stored_key) > 1e-9 * std::abs(stored_key)),
+          fmt::format("{}, the checkpoint has {}", shown(parameter, configured_key),
+                      shown(parameter, stored_key)),
+          toml_value(parameter, stored_key), from_file);
+    set_member_value(parameter, config, member_from_key(parameter, stored_key));
+  }
+  require_input(
+      mismatches.empty(),
+      fmt::format("the configuration gives keys that the input checkpoint '{}' fixes (its particles "
+                  "and their material), with other values:{}\nA run from a checkpoint uses the "
+                  "file's values: remove these keys, or prepare a new assembly with them",
+                  path, mismatches));
+}
+
+config::Range key_range(std::string_view key) {
+  for (const Parameter& parameter : parameters())
+    if (parameter.key == key) return parameter.range;
+  check_invariant(false, "key_range: the key is in the parameter table");
+  return {};
+}
+
+double configured_time_step(const DemConfig& config, double critical_time_step) {
+  return config.integration.time_step > 0 ? config.integration.time_step
+                                          : config.integration.time_step_fraction * critical_time_step;
+}
+
+void require_resume_matches(const DemConfig& config, const SimulationSettings& stored,
+                            const model::CellControl& control, double critical_time_step) {
+  std::string mismatches;
+  const auto& pc = config.particles;
+  const double rate = strain_rate_for_inertial_number(config.load.inertial_number, pc.d50, pc.density,
+                                                      config.load.mean_stress);
+  const double stored_rate = -control.target[0];
+  if (differs(rate, stored_rate))
+    mismatches +=
+        fmt::format("\n  dem.load.inertial_number = {:.6g}, the checkpoint's loading has {:.6g} (strain "
+                    "rate {:.6g} /s)",
+                    config.load.inertial_number,
+                    inertial_number(stored_rate, pc.d50, pc.density, config.load.mean_stress), stored_rate);
+  if (differs(config.load.mean_stress, control.mean_stress_target))
+    mismatches += fmt::format("\n  dem.load.mean_stress = {:.6g}, the checkpoint's loading has {:.6g} Pa",
+                              config.load.mean_stress, control.mean_stress_target);
+  for (const Parameter& parameter : parameters()) {
+    if (parameter.binding != Binding::resumed) continue;
+    const double configured = stored_from_member(parameter, member_value(parameter, config), config);
+    const double kept = parameter.get(stored);
+    if (differs(configured, kept))
+      mismatches += fmt::format("\n  {} = {:.6g}, the checkpoint's loading has {:.6g}", parameter.key,
+                                configured, kept);
+  }
+  const double time_step = configured_time_step(config, critical_time_step);
+  if (differs(time_step, stored.time_step)) {
+    const bool explicit_step = config.integration.time_step > 0;
+    // Full precision, so that the stored step can be given back with --set to resume.
+    mismatches += fmt::format(
+        "\n  {} = {:.6g}, the checkpoint's loading has a time step of {:.17g} s ({:.6g} of critical)",
+        explicit_step ? "dem.integration.time_step" : "dem.integration.time_step_fraction",
+        explicit_step ? config.integration.time_step : config.integration.time_step_fraction,
+        stored.time_step, stored.time_step / critical_time_step);
+  }
+  require_input(mismatches.empty(),
+                fmt::format("load --resume: the configuration differs from the loading it would continue "
+                            "(a resumed run keeps the stored settings, so these would be ignored):{}\n"
+                            "Resume with the original settings, or start a new loading from the checkpoint "
+                            "without --resume.",
+                            mismatches));
 }
 
 } // namespace aniso::dem::io

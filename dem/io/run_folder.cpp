@@ -15,29 +15,40 @@
 #include <random>
 #include <regex>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace aniso::dem::io {
 namespace fs = std::filesystem;
 
-RunFolderLock::RunFolderLock(const std::string& folder, const mpi::Comm& comm) {
-  const std::string path = folder + "/.aniso-dem.lock";
+RunFolderLock::RunFolderLock(const std::string& folder, const mpi::Comm& comm)
+    : path_(folder + "/.aniso-dem.lock") {
   run_on_root(comm, [&] {
-    descriptor_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    require_file(descriptor_ >= 0,
-                 fmt::format("cannot open the lock file '{}': {}", path, std::strerror(errno)));
-    if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
-      const int error = errno;
-      std::string holder;
-      std::ifstream(path) >> holder;
+    // A holder removes the file as it releases it (below), so a lock taken on a file that is no
+    // longer the one under the name is taken again on the new one.
+    for (;;) {
+      descriptor_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+      require_file(descriptor_ >= 0,
+                   fmt::format("cannot open the lock file '{}': {}", path_, std::strerror(errno)));
+      if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
+        const int error = errno;
+        std::string holder;
+        std::ifstream(path_) >> holder;
+        ::close(descriptor_);
+        descriptor_ = -1;
+        require_input(
+            error != EWOULDBLOCK,
+            fmt::format("another aniso-dem (pid {}) is writing into '{}' (it holds '{}'): wait for it "
+                        "to end, or choose another dem.output_dir",
+                        holder.empty() ? "?" : holder, folder, path_));
+        throw FileError(fmt::format("cannot lock '{}': {}", path_, std::strerror(error)));
+      }
+      struct stat held {
+      }, named{};
+      if (::fstat(descriptor_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
+          held.st_dev == named.st_dev && held.st_ino == named.st_ino)
+        break;
       ::close(descriptor_);
-      descriptor_ = -1;
-      require_input(
-          error != EWOULDBLOCK,
-          fmt::format("another aniso-dem (pid {}) is writing into '{}' (it holds '{}'): wait for it "
-                      "to end, or choose another dem.output_dir",
-                      holder.empty() ? "?" : holder, folder, path));
-      throw FileError(fmt::format("cannot lock '{}': {}", path, std::strerror(error)));
     }
     // The holder's pid, for the message above; the lock itself is the flock, not the content.
     const std::string pid = std::to_string(::getpid()) + "\n";
@@ -46,7 +57,12 @@ RunFolderLock::RunFolderLock(const std::string& folder, const mpi::Comm& comm) {
 }
 
 RunFolderLock::~RunFolderLock() {
-  if (descriptor_ >= 0) ::close(descriptor_); // closing releases the flock
+  if (descriptor_ < 0) return;
+  // Removed while still held, so that no lock file outlives the run, whichever way it ends
+  // (an exception unwinds through here; a killed process leaves the file, whose flock the
+  // kernel has dropped, to the next run).
+  ::unlink(path_.c_str());
+  ::close(descriptor_); // closing releases the flock
 }
 
 std::vector<std::string> loading_run_files(const std::string& folder) {

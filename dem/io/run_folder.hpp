@@ -10,8 +10,9 @@
 namespace aniso::dem::io {
 
 /// An exclusive advisory lock (flock) on <folder>/.aniso-dem.lock, held by rank 0 for the
-/// object's lifetime. The kernel drops it when the process ends in any way (kill -9 included),
-/// so a stale lock file never blocks a resume. Collective; InputError on every rank, naming
+/// object's lifetime and removed with it, on every way out of the run that unwinds (errors
+/// included). The kernel drops the flock when the process ends in any way (kill -9 included),
+/// so a lock file left by a killed run never blocks a resume. Collective; InputError on every rank, naming
 /// the folder and the holder's pid, when another process holds it.
 class RunFolderLock {
 public:
@@ -21,6 +22,7 @@ public:
   RunFolderLock& operator=(const RunFolderLock&) = delete;
 
 private:
+  std::string path_;
   int descriptor_ = -1;
 };
 

@@ -9,9 +9,46 @@
 
 namespace aniso::dem::model {
 
-using h5::AxisMode;
+CellControl strain_controlled(const CellControl& from, const Vec3& rates) {
+  CellControl control = from;
+  control.mode = {AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::strain_rate};
+  control.target = rates;
+  control.hold_mean_stress = false;
+  control.servo_state = Vec3::Zero();
+  return control;
+}
 
-Vec3 update_strain_rates(h5::CellState& state, const Mat3& stress, const Vec3& stiffness, double interval,
+CellControl fixed_cell(const CellControl& from) {
+  return strain_controlled(from, Vec3::Zero());
+}
+
+CellControl strain_axes_held(const CellControl& from) {
+  CellControl control = from;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (control.mode[a] == AxisMode::strain_rate) control.target[static_cast<int>(a)] = 0.0;
+  control.servo_state = Vec3::Zero();
+  return control;
+}
+
+CellControl isotropic_stress(const CellControl& from, double pressure) {
+  CellControl control = from;
+  control.mode = {AxisMode::stress, AxisMode::stress, AxisMode::stress};
+  control.target = Vec3::Constant(-pressure);
+  control.hold_mean_stress = false;
+  control.servo_state = Vec3::Zero();
+  return control;
+}
+
+CellControl biaxial_plane_strain(const CellControl& from, double rate, double mean_stress) {
+  CellControl control = from;
+  control.mode = {AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::stress};
+  control.target = Vec3(-rate, 0.0, -mean_stress);
+  control.hold_mean_stress = true;
+  control.mean_stress_target = mean_stress;
+  return control;
+}
+
+Vec3 update_strain_rates(CellControl& state, const Mat3& stress, const Vec3& stiffness, double interval,
                          const ServoSettings& settings) {
   Vec3 rates = Vec3::Zero();
   const double mean_stress = -stress.trace() / 3.0;
@@ -48,7 +85,7 @@ Vec3 update_strain_rates(h5::CellState& state, const Mat3& stress, const Vec3& s
   return rates;
 }
 
-double servo_error(const h5::CellState& state, const Mat3& stress) {
+double servo_error(const CellControl& state, const Mat3& stress) {
   if (state.hold_mean_stress)
     return (-stress.trace() / 3.0 - state.mean_stress_target) / state.mean_stress_target;
   double worst = 0;

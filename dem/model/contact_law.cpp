@@ -72,6 +72,13 @@ ContactConstants contact_constants(const ContactMaterial& material) {
           material.friction, material.damping_ratio};
 }
 
+HertzMindlinSprings hertz_mindlin_springs(const ContactConstants& constants, double effective_radius,
+                                          double overlap) {
+  const double a = std::sqrt(effective_radius * overlap);
+  return {(4.0 / 3.0) * constants.e_star * a * overlap, 2.0 * constants.e_star * a,
+          8.0 * constants.g_star * a};
+}
+
 ContactForce hertz_mindlin_force(const ContactMaterial& material, const PairProperties& pair,
                                  const ContactKinematics& kinematics, ContactHistory& history) {
   return hertz_mindlin_force(contact_constants(material), pair, kinematics, history);
@@ -88,14 +95,10 @@ ContactForce hertz_mindlin_force(const ContactConstants& constants, const PairPr
   }
   const Vec3& n = kinematics.normal;
 
-  // One square root gives the contact radius a = sqrt(R* delta); then
-  // F_n = (4/3) E* a delta, k_n = 2 E* a, k_t = 8 G* a.
-  const double e_star = constants.e_star;
-  const double g_star = constants.g_star;
-  const double a = std::sqrt(pair.effective_radius * overlap);
-  const double f_n = (4.0 / 3.0) * e_star * a * overlap;
-  const double k_n = 2.0 * e_star * a;
-  const double k_t = 8.0 * g_star * a;
+  const HertzMindlinSprings springs = hertz_mindlin_springs(constants, pair.effective_radius, overlap);
+  const double f_n = springs.normal_force;
+  const double k_n = springs.normal_stiffness;
+  const double k_t = springs.tangential_stiffness;
 
   // Split the relative velocity of j with respect to i.
   const Vec3& v_rel = kinematics.relative_velocity;

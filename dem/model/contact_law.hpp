@@ -70,6 +70,17 @@ struct ContactConstants {
 };
 ContactConstants contact_constants(const ContactMaterial& material);
 
+/// Hertz normal force and stiffness and the Mindlin no-slip stiffness at one overlap, from one
+/// square root (the contact radius a = sqrt(R* delta)): F_n = (4/3) E* a delta, k_n = 2 E* a,
+/// k_t = 8 G* a. The force law and a restart's rebuilt contact records share this evaluation.
+struct HertzMindlinSprings {
+  double normal_force = 0;         ///< [N]
+  double normal_stiffness = 0;     ///< [N/m]
+  double tangential_stiffness = 0; ///< [N/m]
+};
+HertzMindlinSprings hertz_mindlin_springs(const ContactConstants& constants, double effective_radius,
+                                          double overlap);
+
 /// The same force with the constants precomputed (the inner loop's form).
 ContactForce hertz_mindlin_force(const ContactConstants& constants, const PairProperties& pair,
                                  const ContactKinematics& kinematics, ContactHistory& history);

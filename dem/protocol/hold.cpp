@@ -1,13 +1,13 @@
 #include "dem/protocol/hold.hpp"
 
 #include "common/error.hpp"
+#include "common/h5/atomic_write.hpp"
+#include "dem/protocol/phase.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 namespace aniso::dem::protocol {
 namespace {
@@ -29,25 +29,19 @@ double HoldReport::final_drift() const {
 }
 
 HoldReport hold_fixed_cell(Simulation& simulation, std::int64_t steps, const Logger& logger) {
-  h5::CellState fixed = simulation.control();
-  fixed.mode = {h5::AxisMode::strain_rate, h5::AxisMode::strain_rate, h5::AxisMode::strain_rate};
-  fixed.target = Vec3::Zero();
-  fixed.hold_mean_stress = false;
-  fixed.servo_state = Vec3::Zero();
+  Phase phase(simulation, "hold", steps);
   simulation.watch_equilibrium(true);
-  simulation.set_control(fixed);
+  simulation.set_control(model::fixed_cell(simulation.control()));
   HoldReport report;
   report.samples.push_back(sample(simulation));
   const double p0 = report.samples.front().mean_stress;
   require_input(p0 > 0,
                 fmt::format("hold: the state carries no compressive mean stress (p = {:.3g} Pa)", p0));
-  const std::int64_t interval = simulation.settings().control_interval;
   Progress progress(logger, "hold", static_cast<double>(steps), 10.0);
-  for (std::int64_t n = 1; n <= steps; ++n) {
-    simulation.step();
-    progress.update(static_cast<double>(n));
-    if (simulation.step_count() % interval != 0 && n != steps) continue;
-    if (simulation.step_count() % interval != 0) simulation.restore_stress(); // the last step's own stress
+  while (!phase.budget_spent()) {
+    phase.advance_to_update();
+    progress.update(static_cast<double>(phase.steps()));
+    if (!simulation.at_control_update()) simulation.measure_stress_now(); // the last step's own stress
     report.samples.push_back(sample(simulation));
     report.largest_drift =
         std::max(report.largest_drift, std::abs(report.samples.back().mean_stress / p0 - 1.0));
@@ -56,17 +50,11 @@ HoldReport hold_fixed_cell(Simulation& simulation, std::int64_t steps, const Log
 }
 
 void write_hold_csv(const HoldReport& report, const std::string& path) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp);
-    out << "step,p,q,unbalanced_force_ratio,kinetic_elastic_ratio\n";
-    for (const HoldSample& s : report.samples) {
-      out << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g}\n", s.step, s.mean_stress, s.deviatoric_stress,
-                         s.unbalanced_force_ratio, s.kinetic_elastic_ratio);
-    }
-    if (!out) throw FileError(fmt::format("cannot write '{}'", temp));
-  }
-  std::filesystem::rename(temp, path);
+  std::string text = "step,p,q,unbalanced_force_ratio,kinetic_elastic_ratio\n";
+  for (const HoldSample& s : report.samples)
+    text += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g}\n", s.step, s.mean_stress, s.deviatoric_stress,
+                        s.unbalanced_force_ratio, s.kinetic_elastic_ratio);
+  h5::write_text_atomically(path, text);
 }
 
 } // namespace aniso::dem::protocol

@@ -7,6 +7,7 @@
 
 #include "common/h5/provenance.hpp"
 #include "common/log.hpp"
+#include "common/timer.hpp"
 #include "dem/config.hpp"
 #include "dem/simulation.hpp"
 
@@ -20,8 +21,10 @@ struct LoadSummary {
   double peak_stress_ratio = 0;
   double peak_strain = 0;
   std::int64_t steps = 0;
-  std::int64_t relaxation_steps = 0; ///< of `steps`, spent relaxing before checkpoints
+  std::int64_t relaxation_steps = 0; ///< of `steps`, spent relaxing (after increments, before checkpoints)
+  double relaxation_seconds = 0;     ///< wall time of those
   double wall_seconds = 0;
+  std::vector<TimingRow> timing; ///< where the wall time went (common/timer.hpp)
   std::vector<std::string> checkpoints;
   std::string interrupted_checkpoint; ///< written on SIGTERM, for --resume; empty if the run ended
 };

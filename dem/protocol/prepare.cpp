@@ -3,9 +3,11 @@
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
 #include "dem/data/spatial_order.hpp"
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
 #include "dem/model/rotation.hpp"
 #include "dem/model/size_distribution.hpp"
+#include "dem/protocol/phase.hpp"
+#include "dem/protocol/rates.hpp"
 #include "dem/protocol/relax.hpp"
 
 #include <fmt/format.h>
@@ -19,28 +21,23 @@
 namespace aniso::dem::protocol {
 namespace {
 
-using h5::AxisMode;
-
-h5::CellState isotropic_strain_control(const Simulation& simulation, double rate) {
-  h5::CellState state = simulation.cell_state();
-  state.mode = {AxisMode::strain_rate, AxisMode::strain_rate, AxisMode::strain_rate};
-  state.target = Vec3::Constant(rate);
-  state.hold_mean_stress = false;
-  return state;
-}
-
 // Compacts at `rate` (negative) until the assembly seizes: a load-bearing
 // network carries at least the seize stress while nearly at rest and with its
 // forces balanced (unbalanced-force ratio below seize_force_ratio). Whenever p
 // passes the seize stress the cell is held still, so that a hot, colliding
 // assembly is not mistaken for a seized one: if the stress then decays as the
 // motion is damped out, compaction resumes. Returns the steps taken.
-std::int64_t compact_until_seized(Simulation& simulation, double rate, const PrepareConfig& prepare,
-                                  const Logger& logger, const std::string& label, double expected_strain) {
-  simulation.set_control(isotropic_strain_control(simulation, rate));
+struct Compaction {
+  std::int64_t steps = 0;
+  double seconds = 0; // wall time
+};
+
+Compaction compact_until_seized(Simulation& simulation, double rate, const PrepareConfig& prepare,
+                                const Logger& logger, const std::string& label, double expected_strain) {
+  Phase phase(simulation, label);
+  simulation.set_control(model::strain_controlled(simulation.control(), Vec3::Constant(rate)));
   bool holding = false;
   const std::int64_t interval = simulation.settings().control_interval;
-  const std::int64_t start = simulation.step_count();
   // Compacting from the sparse state to a solid fraction of 0.74 is a strain of about
   // ln(0.74 / 0.05) / 3 at most; beyond that something is wrong.
   const double strain_limit = std::log(0.75 / 0.05) / 3.0;
@@ -55,8 +52,7 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
   Progress progress(logger, label + " (volumetric strain to the expected seizure)", strain_to_seize, 10.0);
   const Vec3 start_lengths = simulation.cell().lengths();
   for (;;) {
-    simulation.step();
-    if (simulation.step_count() % interval != 0) continue;
+    phase.advance_to_update();
     const double p = mean_stress_compression_positive(simulation.stress());
     const double energy_ratio =
         simulation.equilibrium().kinetic_energy / (std::max(p, 1.0) * simulation.cell().volume());
@@ -81,7 +77,8 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
       // Stalled: still above the seize stress but never calm; compact on and look again.
       holding = above && !stalled;
       held_since = simulation.step_count();
-      simulation.set_control(isotropic_strain_control(simulation, holding ? 0.0 : rate));
+      simulation.set_control(
+          model::strain_controlled(simulation.control(), Vec3::Constant(holding ? 0.0 : rate)));
     }
     if (std::log(start_lengths[0] / simulation.cell().lengths()[0]) > strain_limit) {
       throw ConvergenceError(
@@ -90,8 +87,8 @@ std::int64_t compact_until_seized(Simulation& simulation, double rate, const Pre
                       label, strain_limit, p, prepare.seize_stress));
     }
   }
-  simulation.set_control(isotropic_strain_control(simulation, 0.0));
-  return simulation.step_count() - start;
+  simulation.set_control(model::fixed_cell(simulation.control()));
+  return {phase.steps(), phase.seconds()};
 }
 
 // Random velocities of rms `rms_speed`, drawn in id order on every rank so that the
@@ -122,12 +119,7 @@ void agitate(Simulation& simulation, double rms_speed, RandomStream& stream) {
 // equilibrium there (dem/protocol/relax.hpp): p within consolidation_tolerance and the
 // unbalanced-force ratio below dem.equilibrium.tolerance.
 Relaxation consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger) {
-  h5::CellState state = simulation.cell_state();
-  state.mode = {AxisMode::stress, AxisMode::stress, AxisMode::stress};
-  state.target = Vec3::Constant(-config.prepare.confining_pressure);
-  state.hold_mean_stress = false;
-  state.servo_state = Vec3::Zero();
-  simulation.set_control(state);
+  simulation.set_control(model::isotropic_stress(simulation.control(), config.prepare.confining_pressure));
   EquilibriumConfig tolerances = config.equilibrium;
   tolerances.stress_tolerance = config.prepare.consolidation_tolerance;
   const std::int64_t max_steps =
@@ -219,14 +211,11 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
     particles.add(id, radii[k], pc.aspect_ratio, pc.splice_angle, pc.density, positions[k],
                   orientations_drawn[k]);
   }
-  h5::CellState state;
-  state.lengths = lengths;
-  state.reference_lengths = lengths;
   SimulationSettings settings = io::settings_from_config(config, diameters.back());
   settings.material.friction = config.material.friction_prepare;
   settings.material.damping_ratio = config.prepare.damping;
   settings.global_damping = config.prepare.global_damping;
-  return Simulation(std::move(particles), state, settings, 0.0, 0, false, comm);
+  return Simulation(std::move(particles), cell, model::CellControl{}, settings, comm);
 }
 
 namespace {
@@ -263,10 +252,10 @@ public:
         sparse_(sparse_assembly(config, sizes_, placement_, comm)) {
     sparse_.watch_equilibrium(true); // the seize test reads it at every control update
     const auto& pc = config.particles;
-    rate_ = io::strain_rate_for_inertial_number(config.prepare.inertial_number, pc.d50, pc.density,
-                                                config.prepare.confining_pressure);
+    rate_ = strain_rate_for_inertial_number(config.prepare.inertial_number, pc.d50, pc.density,
+                                            config.prepare.confining_pressure);
     // Compaction to the target takes a volumetric strain of order one.
-    io::require_reachable_strain(0.3, rate_, sparse_.settings().time_step, "prepare");
+    protocol::require_reachable_strain(0.3, rate_, sparse_.settings().time_step, "prepare");
     rms_speed_ = config.prepare.agitation_speed * std::sqrt(config.prepare.confining_pressure / pc.density);
     logger->info("prepare: {} particles, cell {:.4g} x {:.4g} x {:.4g} mm, time step {:.3g} s, compaction "
                  "rate {:.3g} /s",
@@ -286,6 +275,7 @@ private:
   std::vector<std::size_t> cycles_; // indices into seized_ of the cycles themselves
   int refinements_ = 0;
   double last_compaction_strain_ = 0; ///< volumetric strain of the last cycle's compaction
+  double compaction_seconds_ = 0, consolidation_seconds_ = 0; ///< wall time, for the timing table
 
   double target() const { return config_.prepare.target_void_ratio; }
   double tolerance() const { return config_.prepare.void_ratio_tolerance; }
@@ -307,12 +297,13 @@ void Protocol::run_cycle() {
   const double expected = cycle == 1
                               ? std::log(random_close_packing * start_volume / simulation.solid_volume())
                               : last_compaction_strain_;
-  const std::int64_t steps = compact_until_seized(simulation, -rate_, config_.prepare, logger_,
-                                                  fmt::format("compaction cycle {}", cycle), expected);
+  const Compaction compaction = compact_until_seized(simulation, -rate_, config_.prepare, logger_,
+                                                     fmt::format("compaction cycle {}", cycle), expected);
   last_compaction_strain_ = std::log(start_volume / simulation.cell().volume());
   const StateMeasures m = simulation.measure();
-  logger_->info("cycle {:2d}: seized after {} steps at e = {:.4f}, Z = {:.3f}", cycle, steps, m.void_ratio,
-                m.coordination);
+  compaction_seconds_ += compaction.seconds;
+  logger_->info("cycle {:2d}: seized after {} steps at e = {:.4f}, Z = {:.3f}", cycle, compaction.steps,
+                m.void_ratio, m.coordination);
   cycles_.push_back(seized_.size());
   seized_.push_back(Seized{std::move(simulation), m.void_ratio, cycle, 0, 1.0, false});
 }
@@ -336,14 +327,15 @@ bool Protocol::refine(double aim) {
   ++refinements_;
   Simulation simulation = base.state;
   agitate(simulation, rms_speed_ * std::sqrt(energy), refinement_stream_);
-  const std::int64_t steps = compact_until_seized(
+  const Compaction compaction = compact_until_seized(
       simulation, -rate_, config_.prepare, logger_,
       fmt::format("refinement {} of cycle {}", refinements_, cycle), last_compaction_strain_);
   const StateMeasures m = simulation.measure();
   logger_->info(
       "refinement {} of cycle {} (agitation energy x {:.3f}, aiming at e = {:.4f}): seized after {} "
       "steps at e = {:.4f}",
-      refinements_, cycle, energy, aim, steps, m.void_ratio);
+      refinements_, cycle, energy, aim, compaction.steps, m.void_ratio);
+  compaction_seconds_ += compaction.seconds;
   seized_.push_back(Seized{std::move(simulation), m.void_ratio, cycle, refinements_, energy, false});
   return true;
 }
@@ -354,13 +346,16 @@ Consolidated Protocol::consolidate_seized(Seized& seized) {
                 seized.void_ratio);
   Consolidated result{seized.state, {}, {}, seized.void_ratio, seized.cycle, seized.refinement};
   Simulation& chosen = result.state;
-  chosen.set_friction(config_.material.friction);
-  // Consolidated with the damping that loading will use, so that the relaxation proves the
-  // state static with it (a state verified with heavier damping can creep without it).
-  chosen.set_damping(config_.integration.damping);
-  chosen.set_servo_max_rate(rate_);
-  chosen.set_global_damping(config_.integration.global_damping);
+  // Consolidated with the friction and damping that loading will use, so that the relaxation
+  // proves the state static with them (a state verified with heavier damping can creep without it).
+  SimulationSettings settings = chosen.settings();
+  settings.material.friction = config_.material.friction;
+  settings.material.damping_ratio = config_.integration.damping;
+  settings.servo.max_rate = rate_;
+  settings.global_damping = config_.integration.global_damping;
+  chosen.reconfigure(settings);
   result.relaxation = consolidate(chosen, config_, rate_, logger_);
+  consolidation_seconds_ += result.relaxation.seconds;
   chosen.watch_equilibrium(false);
   result.measures = chosen.measure();
   const StateMeasures& m = result.measures;
@@ -459,6 +454,8 @@ PreparedAssembly Protocol::run() {
   result.consolidated = m;
   result.simulation = std::move(best->state);
   result.rng_state = {sizes_.state(), placement_.state(), agitation_.state(), refinement_stream_.state()};
+  result.compaction_seconds = compaction_seconds_;
+  result.consolidation_seconds = consolidation_seconds_;
   return result;
 }
 

@@ -26,6 +26,8 @@ struct PreparedAssembly {
   int chosen_refinement = 0;                  ///< 0: the cycle itself, else which refinement of it
   StateMeasures consolidated;                 ///< after consolidation to p0
   std::vector<std::array<std::uint64_t, 4>> rng_state;
+  double compaction_seconds = 0;    ///< wall time of the compaction cycles and refinements
+  double consolidation_seconds = 0; ///< and of the consolidations
 };
 
 /// A run of a compaction cycle: the agitation energy before it (a fraction of the configured

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "dem/model/cell_control.hpp"
+#include "dem/protocol/phase.hpp"
 
 #include <fmt/format.h>
 
@@ -12,13 +13,13 @@ namespace aniso::dem::protocol {
 namespace {
 // A debug line of the relaxation's state, to see whether a slow relaxation creeps
 // (e and p moving), oscillates (the servo) or rattles (kinetic energy only).
-void trace(const Simulation& simulation, const Logger& logger, const std::string& label, std::int64_t start) {
+void trace(const Simulation& simulation, const Logger& logger, const std::string& label, std::int64_t steps) {
   const Equilibrium& e = simulation.equilibrium();
   logger->debug("{}: step {}: ratio {:.2e}, torque ratio {:.2e}, kinetic/elastic {:.2e}, servo error {:.2e}, "
                 "e = {:.5f}, contacts {}",
-                label, simulation.step_count() - start, e.unbalanced_force_ratio, e.unbalanced_torque_ratio,
-                e.kinetic_elastic_ratio(), simulation.servo_error(),
-                simulation.cell().volume() / simulation.solid_volume() - 1.0, e.n_contacts);
+                label, steps, e.unbalanced_force_ratio, e.unbalanced_torque_ratio, e.kinetic_elastic_ratio(),
+                simulation.servo_error(), simulation.cell().volume() / simulation.solid_volume() - 1.0,
+                e.n_contacts);
 }
 } // namespace
 
@@ -32,26 +33,14 @@ bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& confi
 
 Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig& config,
                                 std::int64_t max_steps, const Logger& logger, const std::string& label) {
-  const h5::CellState loading = simulation.control();
+  Phase phase(simulation, label, max_steps, Phase::GiveBack::on_exit);
+  const model::CellControl loading = simulation.control();
   const double loading_damping = simulation.settings().global_damping;
-  const bool watched = simulation.watching_equilibrium();
-  simulation.watch_equilibrium(true);
-  h5::CellState held = loading;
-  for (int a = 0; a < 3; ++a) {
-    if (held.mode[static_cast<std::size_t>(a)] == h5::AxisMode::strain_rate) held.target[a] = 0.0;
-  }
-  held.servo_state = Vec3::Zero(); // the loading's steady servo rate would drive the held cell
-  h5::CellState fixed = held;      // every axis still: a static state keeps its stress
-  fixed.mode = {h5::AxisMode::strain_rate, h5::AxisMode::strain_rate, h5::AxisMode::strain_rate};
-  fixed.target = Vec3::Zero();
-  fixed.hold_mean_stress = false;
-
-  simulation.set_control(held);
-  const std::int64_t interval = simulation.settings().control_interval;
-  const std::int64_t start = simulation.step_count();
+  const model::CellControl held = model::strain_axes_held(loading);
+  const model::CellControl fixed = model::fixed_cell(held);
   int left_equilibrium = 0; // verification windows that the state did not stay balanced through
-  const auto fail = [&] {
-    throw ConvergenceError(fmt::format(
+  phase.fail_beyond_budget([&] {
+    return fmt::format(
         "{}: not in equilibrium after {} steps (dem.equilibrium.max_steps): unbalanced-force ratio "
         "{:.3g}, torque ratio {:.3g} (tolerance {:.3g}), stress error {:.3g} (tolerance {:.3g}); the state "
         "left equilibrium within dem.equilibrium.verify_steps = {} steps {} times. Raise "
@@ -60,15 +49,15 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
         label, max_steps, simulation.equilibrium().unbalanced_force_ratio,
         simulation.equilibrium().unbalanced_torque_ratio, config.tolerance,
         std::abs(model::servo_error(loading, simulation.stress())), config.stress_tolerance,
-        config.verify_steps, left_equilibrium));
+        config.verify_steps, left_equilibrium);
+  });
+  const auto with_damping = [&](double ratio) {
+    SimulationSettings settings = simulation.settings();
+    settings.global_damping = ratio;
+    simulation.reconfigure(settings);
   };
-  // Steps until the next control update, failing once the budget is spent.
-  const auto advance_to_update = [&] {
-    do {
-      if (simulation.step_count() - start >= max_steps) fail();
-      simulation.step();
-    } while (simulation.step_count() % interval != 0);
-  };
+  simulation.watch_equilibrium(true);
+  simulation.set_control(held);
   // The tolerances must hold at consecutive updates, so that a passing swing does not count.
   constexpr int required_checks = 3;
   // A state verified afterwards is first relaxed to half the tolerances: one that only just met
@@ -77,13 +66,13 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   const double margin = config.verify_steps > 0 ? kRelaxationMargin : 1.0;
   Progress progress(logger, label, -std::log10(margin * config.tolerance), 10.0);
   for (;;) {
-    simulation.set_global_damping(config.damping);
+    with_damping(config.damping);
     int passed = in_equilibrium(simulation, config, margin) ? 1 : 0;
     while (passed < required_checks) {
-      advance_to_update();
+      phase.advance_to_update();
       passed = in_equilibrium(simulation, config, margin) ? passed + 1 : 0;
       const double ratio = simulation.equilibrium().unbalanced_force_ratio;
-      if ((simulation.step_count() - start) % 5000 == 0) trace(simulation, logger, label, start);
+      if (phase.steps() % 5000 == 0) trace(simulation, logger, label, phase.steps());
       progress.update(std::isfinite(ratio) && ratio > 0
                           ? std::min(-std::log10(ratio), -std::log10(margin * config.tolerance))
                           : 0.0);
@@ -94,15 +83,14 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
     // stress for verify_steps.
     if (config.verify_steps == 0) break;
     simulation.set_control(fixed);
-    simulation.set_global_damping(loading_damping);
+    with_damping(loading_damping);
     const double start_stress = mean_stress_compression_positive(simulation.stress());
     bool stable = true;
     std::int64_t verified = 0;
     double drift = 0;
-    for (; verified < config.verify_steps && stable; verified += interval) {
-      advance_to_update();
-      if ((simulation.step_count() - start) % 5000 == 0)
-        trace(simulation, logger, label + " (verifying)", start);
+    for (; verified < config.verify_steps && stable; verified += simulation.settings().control_interval) {
+      phase.advance_to_update();
+      if (phase.steps() % 5000 == 0) trace(simulation, logger, label + " (verifying)", phase.steps());
       const Equilibrium& e = simulation.equilibrium();
       drift = mean_stress_compression_positive(simulation.stress()) / start_stress - 1.0;
       stable = e.unbalanced_force_ratio < config.tolerance && e.unbalanced_torque_ratio < config.tolerance &&
@@ -119,12 +107,11 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
     simulation.set_control(held);
   }
   Relaxation result;
-  result.steps = simulation.step_count() - start;
+  result.steps = phase.steps();
+  result.seconds = phase.seconds();
   result.equilibrium = simulation.equilibrium();
   result.stress_error = std::abs(model::servo_error(loading, simulation.stress()));
-  simulation.set_control(loading);
-  simulation.set_global_damping(loading_damping);
-  simulation.watch_equilibrium(watched);
+  phase.end();
   return result;
 }
 

@@ -18,6 +18,7 @@ namespace aniso::dem::protocol {
 
 struct Relaxation {
   std::int64_t steps = 0;
+  double seconds = 0;      ///< wall time
   Equilibrium equilibrium; ///< at the end
   double stress_error = 0; ///< |servo error| at the end
 };

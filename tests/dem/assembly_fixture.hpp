@@ -9,8 +9,9 @@
 #include "common/rng.hpp"
 #include "common/tensor.hpp"
 #include "dem/config.hpp"
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
 #include "dem/protocol/prepare.hpp"
+#include "dem/protocol/rates.hpp"
 #include "dem/simulation.hpp"
 
 #include <gtest/gtest.h>
@@ -43,16 +44,12 @@ inline Simulation loose_assembly(const DemConfig& config) {
 
 /// Isotropic compaction rate [1/s] for an inertial number at the confining pressure.
 inline double compaction_rate(const DemConfig& config, double inertial_number) {
-  return io::strain_rate_for_inertial_number(inertial_number, config.particles.d50, config.particles.density,
-                                             config.prepare.confining_pressure);
+  return strain_rate_for_inertial_number(inertial_number, config.particles.d50, config.particles.density,
+                                         config.prepare.confining_pressure);
 }
 
-inline h5::CellState isotropic_rate(const Simulation& simulation, double rate) {
-  h5::CellState state = simulation.cell_state();
-  state.mode = {h5::AxisMode::strain_rate, h5::AxisMode::strain_rate, h5::AxisMode::strain_rate};
-  state.target = Vec3::Constant(rate);
-  state.hold_mean_stress = false;
-  return state;
+inline model::CellControl isotropic_rate(const Simulation& simulation, double rate) {
+  return model::strain_controlled(simulation.control(), Vec3::Constant(rate));
 }
 
 /// Compacts isotropically at `rate` (negative) until p reaches `pressure` at a

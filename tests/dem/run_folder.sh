@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Output folders keep one run each (issue 22): a fresh load refuses a folder that holds another
 # loading run unless --overwrite (which never removes its own input); --resume refuses another
-# run's history, a prepared assembly, and a checkpoint beyond what the history reaches; a
-# second writer is refused while the first holds the folder's lock; aniso-fabric refuses to
-# write its results over its input. Each refusal: exit 2, a message naming the problem, and no
-# file of the earlier run changed.
+# run's history, a prepared assembly, a checkpoint beyond what the history reaches and a history
+# of another schema version (exit 3); a second writer is refused while the first holds the
+# folder's lock, which no run leaves behind, failed or not; aniso-fabric refuses to write its
+# results over its input. Each refusal: exit 2, a message naming the problem, and no file of the
+# earlier run changed.
 #
 # usage: run_folder.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -23,6 +24,12 @@ settings=(--set dem.particles.count=200 --set dem.seed=4 --set dem.prepare.cycle
 "$dem" load "${settings[@]}" --set dem.output_dir=B --input prep/prepared.h5
 sums_before=$(md5sum A/* B/*)
 status=0
+for folder in A B prep; do
+  if [ -e "$folder/.aniso-dem.lock" ]; then
+    echo "FAIL: $folder/.aniso-dem.lock is left behind after the run ended"
+    status=1
+  fi
+done
 
 source "$(dirname "$0")/../tools/cli_lib.sh"
 # expect NAME PATTERN COMMAND...: exit 2 with PATTERN in the output.
@@ -58,33 +65,23 @@ cp -r A short
 expect resume_beyond_the_history "before the input checkpoint's step" \
   "$dem" load "${settings[@]}" --set dem.output_dir=short --input A/load_002.h5 --resume
 
-# Files written before run ids and covers_step (a legacy run stopped by SIGTERM) hold history
-# rows up to the last sample before the stop: a checkpoint less than one history interval past
-# the last row continues it, one further is refused.
-strip_legacy() { # FOLDER CHECKPOINT: remove what older versions did not write
-  /usr/bin/python3 - "$@" <<'PY'
-import sys, h5py
-with h5py.File(sys.argv[1] + "/history.h5", "r+") as f:
-    del f.attrs["run_id"], f.attrs["covers_step"]
-with h5py.File(sys.argv[2], "r+") as f:
-    del f.attrs["run_id"]
+# A history of another schema version (another aniso-dem wrote it) is refused by name.
+cp -r A old_schema
+/usr/bin/python3 - old_schema/history.h5 <<'PY'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1], "r+") as f:
+    f.attrs["schema_version"] = np.int64(3)
 PY
-}
-for case in near far; do
-  cp -r A "legacy_$case"
-  stop=$([ "$case" = near ] && echo 0.00195 || echo 0.0018)
-  "$dem" load "${settings[@]}" --set dem.output_dir="legacy_$case" --input "legacy_$case/load_000.h5" \
-    --resume --set dem.load.final_strain=$stop --set 'dem.load.checkpoint_strains=[0.001]'
-  strip_legacy "legacy_$case" "legacy_$case/load_001.h5"
-done
-if ! "$dem" load "${settings[@]}" --set dem.output_dir=legacy_near --input legacy_near/load_001.h5 \
-  --resume >legacy_near.log 2>&1 || ! grep -q "carry no run id" legacy_near.log; then
-  echo "FAIL: a legacy history within one interval of the checkpoint was not continued:"
-  cat legacy_near.log
+expect_exit 3 history_of_another_version "schema_version 3, expected 4" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=old_schema --input old_schema/load_001.h5 --resume
+
+# The lock is released with its file on every way out: a run that ended (above), and one that failed.
+expect_exit 4 prepare_too_few_particles "below twice the interaction range" \
+  "$dem" prepare --set dem.particles.count=2 --set dem.output_dir=tiny --log-level warn
+if [ -e tiny/.aniso-dem.lock ]; then
+  echo "FAIL: a prepare that failed (exit 4) left tiny/.aniso-dem.lock behind"
   status=1
 fi
-expect legacy_beyond_the_history "before the input checkpoint's step" \
-  "$dem" load "${settings[@]}" --set dem.output_dir=legacy_far --input legacy_far/load_001.h5 --resume
 
 # --overwrite replaces the run: the old files go, a new run id is written.
 old_id=$(h5dump -a run_id A/history.h5 | grep -o '"[^"]*"' | tail -1)
@@ -95,5 +92,5 @@ if [ "$old_id" = "$new_id" ] || [ "$checkpoint_id" != "$new_id" ]; then
   echo "FAIL: --overwrite: history run id $old_id -> $new_id, checkpoint $checkpoint_id"
   status=1
 fi
-[ "$status" = 0 ] && echo "output folders: every refusal exit 2 with its message, no file changed; --overwrite replaced the run; a legacy history continued"
+[ "$status" = 0 ] && echo "output folders: every refusal exit 2 with its message, no file changed; --overwrite replaced the run; no lock file left behind"
 exit "$status"

@@ -4,7 +4,8 @@
 // Rayleigh step. Velocity Verlet is symplectic, so the total energy
 // (kinetic + Hertz potential (2/5) F_n delta) must not drift; the sum of
 // pairwise forces is zero, so the momentum is kept to round-off.
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
+#include "dem/protocol/rates.hpp"
 #include "dem/simulation.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
@@ -55,8 +56,10 @@ GasResult run_gas(double rms, double time_step_fraction, double duration, double
   config.prepare.damping = 0.0;
   config.integration.time_step_fraction = time_step_fraction;
   Simulation simulation = test::loose_assembly(config);
-  simulation.set_friction(0.0);
-  simulation.set_damping(0.0);
+  SimulationSettings frictionless = simulation.settings();
+  frictionless.material.friction = 0.0;
+  frictionless.material.damping_ratio = 0.0;
+  simulation.reconfigure(frictionless);
   EXPECT_EQ(simulation.control().strain_rate, Vec3::Zero());
 
   Particles& particles = simulation.particles();
@@ -157,12 +160,11 @@ CollisionResult collide(double time_step_fraction) {
                 centre + Vec3(radius + 0.3e-6, 0, 0));
   particles.velocity[0] = Vec3(2.0, 0, 0);
   particles.velocity[1] = Vec3(-2.0, 0, 0);
-  aniso::h5::CellState state;
-  state.lengths = state.reference_lengths = Vec3::Constant(1e-3);
+  const aniso::PeriodicCell state(Vec3::Constant(1e-3));
   SimulationSettings settings = settings_from_config(config, config.particles.diameter_min);
   settings.material.friction = 0;
   settings.material.damping_ratio = 0;
-  Simulation simulation(std::move(particles), state, settings, 0.0, 0, false,
+  Simulation simulation(std::move(particles), state, model::CellControl{}, settings,
                         aniso::mpi::Comm(MPI_COMM_SELF));
   const double start = total_energy(simulation);
   CollisionResult result;

@@ -6,10 +6,11 @@
 #include "common/h5/checkpoint.hpp"
 #include "dem/io/checkpoint.hpp"
 #include "dem/io/history.hpp"
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
 #include "dem/model/integrator.hpp"
 #include "dem/protocol/hold.hpp"
 #include "dem/protocol/load.hpp"
+#include "dem/protocol/rates.hpp"
 #include "dem/protocol/relax.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
@@ -40,12 +41,10 @@ Simulation spheres_on_a_line(const std::vector<double>& x, double global_damping
     particles.add(k, radius, 1.0, config.particles.splice_angle, config.particles.density,
                   Vec3(x[k], 0.5 * length, 0.5 * length));
   }
-  h5::CellState cell;
-  cell.lengths = Vec3::Constant(length);
-  cell.reference_lengths = cell.lengths;
+  const PeriodicCell cell(Vec3::Constant(length));
   SimulationSettings settings = settings_from_config(config, 2 * radius);
   settings.material.damping_ratio = 0.0;
-  return Simulation(std::move(particles), cell, settings, 0.0, 0, false, mpi::Comm(MPI_COMM_SELF));
+  return Simulation(std::move(particles), cell, model::CellControl{}, settings, mpi::Comm(MPI_COMM_SELF));
 }
 
 TEST(Equilibrium, TwoTouchingSpheresAreWhollyUnbalanced) {
@@ -90,7 +89,7 @@ TEST(Equilibrium, KineticEnergyOfKnownVelocities) {
   Particles& particles = simulation.particles();
   particles.velocity[2] = Vec3(0.0, 0.3, 0.4); // |v| = 0.5 m/s, far from the others
   particles.angular_velocity[2] = Vec3(0.0, 0.0, 100.0);
-  simulation.restore_stress(); // measures again
+  simulation.measure_stress_now(); // measures again
   const double mass = particles.mass[2], inertia = particles.inertia[2][2];
   const double expected = 0.5 * mass * 0.25 + 0.5 * inertia * 1e4;
   EXPECT_NEAR(simulation.equilibrium().kinetic_energy, expected, 1e-12 * expected);
@@ -151,7 +150,7 @@ Simulation loaded_for_3000_steps(const DemConfig& config) {
 TEST(Equilibrium, RelaxationAfterLoadingMeetsTheTolerancesAndGivesTheControlBack) {
   const DemConfig config = test::small_config(150, 5);
   Simulation simulation = loaded_for_3000_steps(config);
-  const h5::CellState loading = simulation.control();
+  const model::CellControl loading = simulation.control();
   const double length_1 = simulation.cell().lengths()[0];
   const Relaxation relaxed =
       relax_to_equilibrium(simulation, config.equilibrium, 500000, make_silent_logger(), "test");
@@ -188,8 +187,8 @@ TEST(Equilibrium, LoadCheckpointsAreWrittenStaticAndStayStatic) {
   Simulation simulation = prepared();
   start_loading(simulation, config);
   const std::string output = folder.file("");
-  const LoadSummary summary =
-      run_loading(simulation, config, output, test::test_provenance(), make_silent_logger(), false);
+  const LoadSummary summary = run_loading(simulation, config, output, test::test_provenance(),
+                                          make_silent_logger(), false, "increments");
   ASSERT_EQ(summary.checkpoints.size(), 1u);
   EXPECT_GT(summary.relaxation_steps, 0);
   const h5::Checkpoint checkpoint = h5::read_checkpoint(summary.checkpoints[0], mpi::Comm(MPI_COMM_SELF));
@@ -219,8 +218,8 @@ TEST(Equilibrium, IncrementalLoadingRelaxesEveryIncrementAndResumesBitForBit) {
   const mpi::Comm self(MPI_COMM_SELF);
   Simulation straight = prepared();
   start_loading(straight, config);
-  const LoadSummary first =
-      run_loading(straight, config, output, test::test_provenance(), make_silent_logger(), false);
+  const LoadSummary first = run_loading(straight, config, output, test::test_provenance(),
+                                        make_silent_logger(), false, "increments");
   EXPECT_GT(first.relaxation_steps, 0);
   const std::vector<double> ratios = History::read(output).column("unbalanced_force_ratio");
   const std::vector<double> strains = History::read(output).column("strain_11");
@@ -236,7 +235,8 @@ TEST(Equilibrium, IncrementalLoadingRelaxesEveryIncrementAndResumesBitForBit) {
   EXPECT_NEAR(-checkpoint.cell.lengths[0] / checkpoint.cell.reference_lengths[0] + 1.0, 0.0007, 1e-6);
   EXPECT_LT(checkpoint.unbalanced_force_ratio, config.load.increment_tolerance); // an increment ended there
   Simulation resumed = from_checkpoint(checkpoint, first.checkpoints[0], self);
-  (void)run_loading(resumed, config, output, test::test_provenance(), make_silent_logger(), true);
+  (void)run_loading(resumed, config, output, test::test_provenance(), make_silent_logger(), true,
+                    "increments");
   EXPECT_EQ(resumed.step_count(), straight.step_count());
   ASSERT_EQ(resumed.particles().size(), straight.particles().size());
   for (std::size_t k = 0; k < straight.particles().size(); ++k)

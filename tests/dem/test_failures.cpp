@@ -10,9 +10,9 @@
 #include "dem/config.hpp"
 #include "dem/io/checkpoint.hpp"
 #include "dem/io/parameters.hpp"
-#include "dem/io/settings.hpp"
 #include "dem/model/contact_law.hpp"
 #include "dem/model/integrator.hpp"
+#include "dem/protocol/rates.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
 #include <fmt/format.h>
@@ -85,11 +85,10 @@ TEST(Failures, HeadOnImpactStopsWithOverlapError) {
                 Vec3(0.5e-3 + radius + 0.5e-6, 0.5e-3, 0.5e-3));
   particles.velocity[0] = Vec3(500.0, 0, 0);
   particles.velocity[1] = Vec3(-500.0, 0, 0);
-  h5::CellState state;
-  state.lengths = lengths;
-  state.reference_lengths = lengths;
+  const PeriodicCell state(lengths);
   SimulationSettings settings = settings_from_config(config, config.particles.diameter_min);
-  Simulation simulation(std::move(particles), state, settings, 0.0, 0, false, mpi::Comm(MPI_COMM_SELF));
+  Simulation simulation(std::move(particles), state, model::CellControl{}, settings,
+                        mpi::Comm(MPI_COMM_SELF));
   try {
     for (int k = 0; k < 1000; ++k)
       simulation.step();
@@ -114,8 +113,7 @@ TEST(Failures, ExplosionLeavesEarlierCheckpointIntact) {
   test::TemporaryFolder folder("aniso_test_failures");
   const std::string path = folder.file("before_explosion.h5");
   const mpi::Comm self(MPI_COMM_SELF);
-  h5::write_checkpoint(path, to_checkpoint(simulation, config.particles.d50, {}), test::test_provenance(),
-                       self);
+  h5::write_checkpoint(path, to_checkpoint(simulation), test::test_provenance(), self);
   const std::int64_t written_step = simulation.step_count();
   const std::vector<Vec3> written_positions = simulation.particles().position;
   const auto size_before = std::filesystem::file_size(path);
@@ -175,7 +173,7 @@ TEST(Failures, DiameterMinNotBelowD50IsRejected) {
 TEST(Failures, CheckpointOutsideTheConfigRangesIsRefused) {
   const DemConfig config = test::small_config(150, 5);
   const Simulation simulation = test::loose_assembly(config);
-  const h5::Checkpoint good = to_checkpoint(simulation, config.particles.d50, {});
+  const h5::Checkpoint good = to_checkpoint(simulation);
   const mpi::Comm self(MPI_COMM_SELF);
   EXPECT_NO_THROW((void)from_checkpoint(good, "good.h5", self));
   const auto set_parameter = [](h5::Checkpoint& c, const std::string& name, double value) {

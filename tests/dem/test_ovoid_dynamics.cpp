@@ -3,9 +3,10 @@
 // linear and angular momentum (with friction) and energy (without friction and damping).
 #include "common/rng.hpp"
 #include "dem/config.hpp"
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
 #include "dem/measures.hpp"
 #include "dem/model/rotation.hpp"
+#include "dem/protocol/rates.hpp"
 #include "dem/simulation.hpp"
 
 #include <gtest/gtest.h>
@@ -107,12 +108,11 @@ CollisionTotals collide(double friction, int seed, CollisionTotals& start) {
   particles.velocity[0] = Vec3(1.0, 0.1, 0.0);
   particles.velocity[1] = Vec3(-1.0, 0.0, 0.05);
   particles.angular_velocity[0] = Vec3(0, 0, 2e3);
-  aniso::h5::CellState state;
-  state.lengths = state.reference_lengths = Vec3::Constant(1e-3);
+  const aniso::PeriodicCell state(Vec3::Constant(1e-3));
   SimulationSettings settings = settings_from_config(config, 2 * radius);
   settings.material.friction = friction;
   settings.material.damping_ratio = 0;
-  Simulation simulation(std::move(particles), state, settings, 0.0, 0, false,
+  Simulation simulation(std::move(particles), state, model::CellControl{}, settings,
                         aniso::mpi::Comm(MPI_COMM_SELF));
   start = totals(simulation);
   CollisionTotals end;

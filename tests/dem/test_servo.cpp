@@ -10,8 +10,9 @@
 //   percentile 1.3e-2, max 3.2e-2. A 150-particle assembly suffers small
 //   collapses that take p away for a moment; the 0.5 % goal holds for the
 //   median, not for the maximum, at this size.
-#include "dem/io/settings.hpp"
+#include "dem/io/parameters.hpp"
 #include "dem/protocol/load.hpp"
+#include "dem/protocol/rates.hpp"
 #include "tests/dem/assembly_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -85,7 +86,7 @@ LoadingResult load_biaxially(Simulation simulation, const DemConfig& config) {
   }
   EXPECT_EQ(simulation.cell().engineering_strain()[1], 0.0);
   EXPECT_NEAR(simulation.cell().lengths()[0] / expected_length, 1.0, 1e-12);
-  EXPECT_EQ(simulation.control().mode[2], h5::AxisMode::stress);
+  EXPECT_EQ(simulation.control().mode[2], model::AxisMode::stress);
   EXPECT_TRUE(simulation.control().hold_mean_stress);
 
   std::sort(errors.begin(), errors.end());

@@ -27,7 +27,7 @@ TEST(FabricDem, ContactStressAndCoordinationEqualTheDemsOwn) {
 
   const dem::test::TemporaryFolder folder("fabric_dem_agreement");
   const std::string path = folder.file("state.h5");
-  h5::write_checkpoint(path, dem::io::to_checkpoint(simulation, config.particles.d50, {{1, 2, 3, 4}}),
+  h5::write_checkpoint(path, dem::io::to_checkpoint(simulation, {{{1, 2, 3, 4}}, {}}),
                        dem::test::test_provenance(), self);
   const h5::Checkpoint checkpoint = h5::read_checkpoint(path, self);
   const FabricMeasures m = measure_fabric(checkpoint, path, FabricConfig{}, self);

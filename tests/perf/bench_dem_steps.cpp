@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   const int n_repeats = argc > 3 ? std::atoi(argv[3]) : 5;
   const h5::Checkpoint checkpoint = h5::read_checkpoint(path, mpi::Comm(MPI_COMM_SELF));
   dem::DemConfig config; // defaults: the paper's loading
-  config.particles.d50 = h5::parameter(checkpoint, "d50", path);
+  config.particles.d50 = h5::parameter(checkpoint, h5::parameter_name::d50, path);
   std::vector<double> seconds;
   double contacts = 0;
   for (int repeat = 0; repeat < n_repeats; ++repeat) {

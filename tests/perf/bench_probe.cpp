@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   const h5::Checkpoint checkpoint = h5::read_checkpoint(path, comm);
   const probe::ProbeConfig config; // the defaults
   dem::DemConfig load_config;
-  load_config.particles.d50 = h5::parameter(checkpoint, "d50", path);
+  load_config.particles.d50 = h5::parameter(checkpoint, h5::parameter_name::d50, path);
   std::vector<double> probe_seconds, peer_seconds;
   std::int64_t steps = 0;
   for (int repeat = 0; repeat < n_repeats; ++repeat) {

@@ -113,8 +113,9 @@ int main(int argc, char** argv) {
     }
   }
   const h5::Checkpoint checkpoint = h5::read_checkpoint(path, mpi::Comm(MPI_COMM_SELF));
-  const double d50 = h5::parameter(checkpoint, "d50", path);
-  const double splice = voxel::find_parameter(checkpoint, "ovoid_splice_angle").value_or(0.785398163397448);
+  const double d50 = h5::parameter(checkpoint, h5::parameter_name::d50, path);
+  const double splice =
+      voxel::find_parameter(checkpoint, h5::parameter_name::splice_angle).value_or(0.785398163397448);
   // The assembly repeated tiles[a] times along each axis: still exactly periodic.
   std::vector<voxel::Body> bodies;
   const std::vector<voxel::Body> cell_bodies = voxel::bodies_of(checkpoint);

@@ -8,6 +8,7 @@
 // The forks must reproduce this; the reference fork stays at rest (the lattice is static).
 #include "common/h5/checkpoint.hpp"
 #include "common/log.hpp"
+#include "dem/io/parameters.hpp"
 #include "dem/model/contact_law.hpp"
 #include "probe/collect.hpp"
 #include "probe/schedule.hpp"
@@ -48,18 +49,14 @@ h5::Checkpoint lattice() {
   c.cell.lengths = Vec3::Constant(cells * spacing);
   c.cell.reference_lengths = c.cell.lengths;
   c.cell.mode = {h5::AxisMode::strain_rate, h5::AxisMode::strain_rate, h5::AxisMode::strain_rate};
-  c.parameters = {{"shear_modulus", m.shear_modulus, "Pa"},
-                  {"poisson_ratio", m.poisson_ratio, "1"},
-                  {"friction", m.friction, "1"},
-                  {"damping_ratio", m.damping_ratio, "1"},
-                  {"density", 2650.0, "kg/m^3"},
-                  {"d50", diameter, "m"},
-                  {"skin", 0.1 * diameter, "m"},
-                  {"control_interval", 10.0, "1"},
-                  {"servo_gain", 0.2, "1"},
-                  {"servo_max_rate", 0.0, "1/s"},
-                  {"servo_integral_intervals", 20.0, "1"},
-                  {"explosion_overlap", 0.05, "1"}};
+  dem::SimulationSettings settings;
+  settings.material = m;
+  settings.density = 2650.0;
+  settings.d50 = diameter;
+  settings.skin = 0.1 * diameter;
+  settings.control_interval = 10;
+  c.parameters = dem::io::stored_parameters(settings); // every parameter a checkpoint stores
+  c.parameters.push_back({"global_damping_rate", 0.0, "1/s"});
   const double mass = 2650.0 * std::numbers::pi * diameter * diameter * diameter / 6.0;
   const auto index = [](int x, int y, int z) {
     return static_cast<std::uint64_t>((x * cells + y) * cells + z);

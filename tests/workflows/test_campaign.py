@@ -27,21 +27,14 @@ def touch(path, when):
     os.utime(path, (when, when))
 
 
-def fake_bin(folder, doubles, older=()):
-    """A BIN folder: the real aniso-dem, command-line doubles for `doubles`, and for `older` executables
-    whose --help lacks the workflow's options, as an older build's would."""
+def fake_bin(folder, doubles):
+    """A BIN folder: the real aniso-dem and command-line doubles for `doubles`."""
     os.symlink(os.path.join(BUILD, "dem"), os.path.join(folder, "dem"))
     for stage in doubles:
         os.makedirs(os.path.join(folder, stage))
         path = os.path.join(folder, stage, f"aniso-{stage}")
         with open(path, "w") as f:
             f.write(f'#!/bin/sh\nexec /usr/bin/python3 {DOUBLE} {stage} "$@"\n')
-        os.chmod(path, 0o755)
-    for stage in older:
-        os.makedirs(os.path.join(folder, stage))
-        path = os.path.join(folder, stage, f"aniso-{stage}")
-        with open(path, "w") as f:
-            f.write(f'#!/bin/sh\necho "usage: aniso-{stage} [--config FILE] [--dry-run]"\n')
         os.chmod(path, 0o755)
     return folder
 
@@ -105,14 +98,14 @@ class LoadInput(unittest.TestCase):
 
 
 class Stages(unittest.TestCase):
-    def test_only_stages_with_the_called_command_line_are_used(self):
+    def test_only_built_stages_are_used(self):
         with tempfile.TemporaryDirectory() as folder:
-            fake_bin(folder, doubles=["probe", "lbm"], older=["voxel"])
+            fake_bin(folder, doubles=["probe", "lbm"])
             result = campaign("stages", folder)
             self.assertEqual(result.returncode, 0, result.stderr)
             self.assertEqual(result.stdout.split(), ["probe", "lbm", "lbm-directions"])
             self.assertRegex(result.stderr, r"skipping fabric: .*aniso-fabric not found")
-            self.assertRegex(result.stderr, r"skipping voxel: aniso-voxel does not offer .*it lacks: --input")
+            self.assertRegex(result.stderr, r"skipping voxel: .*aniso-voxel not found")
 
     def test_checkpoint_names_come_from_the_effective_config(self):
         result = campaign("checkpoints", os.path.join(WORKFLOWS, "configs", "demo.toml"), BUILD)
@@ -142,62 +135,6 @@ class Stages(unittest.TestCase):
         result = campaign("no-such-command")
         self.assertEqual(result.returncode, 2)
         self.assertRegex(result.stderr, r"^campaign.py: error \(bad input\): unknown command line no-such-command")
-
-
-class RunFolderLayout(unittest.TestCase):
-    """Each stage's files in a folder of its own; a run folder of the flat layout before 2026-12-04
-    is refused (the DEM would start again beside it) and regrouped on request (issue 24)."""
-
-    FLAT = {"dem": ["prepared.h5", "load_000.h5", "load_interrupted.h5", "history.h5", "history.csv", "load.done"],
-            "fabric": ["fabric.h5", "fabric_series.h5", "fabric_series_correlations.csv"],
-            "probe": ["probe_load_000_fork0.h5", "probe_load_000.h5", "probe_load_000.csv"],
-            "voxel": ["image_load_000.h5", "image_load_000.xmf", "voids_load_000.h5", "voids_load_000.csv"],
-            "lbm": ["permeability_image_load_000_direction2.h5", "permeability_image_load_000.h5"]}
-
-    def setUp(self):
-        self.dir = tempfile.TemporaryDirectory()
-        self.out = self.dir.name
-        for k, name in enumerate(sum(self.FLAT.values(), []) + ["report.md", "notes.txt"]):
-            touch(os.path.join(self.out, name), 1000 + k)
-
-    def tearDown(self):
-        self.dir.cleanup()
-
-    def test_a_flat_folder_is_refused_with_the_command_that_regroups_it(self):
-        result = campaign("layout", self.out)
-        self.assertEqual(result.returncode, 2)
-        self.assertIn(f"{self.out} holds 18 stage files in the run folder itself", result.stderr)
-        self.assertIn(f"campaign.py regroup {self.out}", result.stderr)
-
-    def test_make_refuses_a_flat_folder_before_the_dem(self):
-        result = subprocess.run(["make", "-s", "-C", WORKFLOWS, "campaign", f"OUT={self.out}", f"BIN={BUILD}"],
-                                capture_output=True, text=True)
-        self.assertNotEqual(result.returncode, 0)
-        self.assertIn("the layout before 2026-12-04", result.stderr)
-        self.assertFalse(os.path.exists(os.path.join(self.out, "dem")), "the DEM ran")
-
-    def test_regroup_moves_each_file_into_its_stage_folder_keeping_its_time(self):
-        times = {name: os.path.getmtime(os.path.join(self.out, name)) for name in sum(self.FLAT.values(), [])}
-        result = campaign("regroup", self.out)
-        self.assertEqual(result.returncode, 0, result.stderr)
-        for stage, names in self.FLAT.items():
-            self.assertEqual(sorted(os.listdir(os.path.join(self.out, stage))), sorted(names), stage)
-            for name in names:
-                self.assertEqual(os.path.getmtime(os.path.join(self.out, stage, name)), times[name], name)
-        self.assertEqual(sorted(os.listdir(self.out)), ["dem", "fabric", "lbm", "notes.txt", "probe", "report.md",
-                                                        "voxel"])
-        self.assertEqual(campaign("layout", self.out).returncode, 0)
-        self.assertEqual(campaign("layout", os.path.join(self.out, "missing")).returncode, 0)  # a new run
-
-    def test_regroup_overwrites_nothing(self):
-        os.mkdir(os.path.join(self.out, "probe"))
-        touch(os.path.join(self.out, "probe", "probe_load_000.h5"), 2000)
-        result = campaign("regroup", self.out)
-        self.assertEqual(result.returncode, 3)
-        self.assertIn("cannot move probe_load_000.h5", result.stderr)
-        self.assertEqual(os.path.getmtime(os.path.join(self.out, "probe", "probe_load_000.h5")), 2000)
-        self.assertTrue(os.path.exists(os.path.join(self.out, "probe_load_000.h5")))
-        self.assertFalse(os.path.exists(os.path.join(self.out, "dem")), "nothing moves when one file clashes")
 
 
 def e2e_with_workflow(folder, section):

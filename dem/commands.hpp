@@ -1,0 +1,52 @@
+#pragma once
+// The aniso-dem subcommands that run a protocol: each reads its input, runs the protocol
+// (dem/protocol/), writes its files (dem/io/) and ends with the run's timing table. main.cpp
+// parses the command line and calls one of them; import and export are in dem/interop/.
+
+#include "common/config.hpp"
+#include "common/h5/checkpoint.hpp"
+#include "common/log.hpp"
+#include "common/mpi.hpp"
+#include "dem/config.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace aniso::dem {
+
+/// What every subcommand gets: the configuration as read (and adopted from an input checkpoint),
+/// its reader (for provenance), the command line, the logger and the communicator.
+struct CommandContext {
+  const DemConfig& config;
+  const config::Reader& reader;
+  std::string command_line;
+  Logger logger;
+  mpi::Comm comm;
+};
+
+/// prepare: a dense isotropic assembly, written to <output_dir>/prepared.h5.
+int run_prepare(const CommandContext& context);
+
+struct LoadOptions {
+  bool resume = false;    ///< continue the loading run whose checkpoint `input` is
+  bool overwrite = false; ///< replace a loading run already in the output folder
+};
+/// load: biaxial plane strain at constant mean stress from `checkpoint` (read from `input`).
+int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
+             const LoadOptions& options);
+
+struct HoldOptions {
+  std::int64_t steps = 0;
+  std::string csv;      ///< "": no CSV
+  double max_drift = 0; ///< exit 5 if |p - p_start| / p_start exceeds it (0: report only)
+};
+/// hold: the checkpoint at a fixed cell; reports the drift of p.
+int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
+             const HoldOptions& options);
+
+/// relax: the checkpoint relaxed at its own loading control to the verified equilibrium of
+/// dem.equilibrium, written to `output` (never the input).
+int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
+              const std::string& output);
+
+} // namespace aniso::dem
