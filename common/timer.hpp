@@ -19,11 +19,12 @@ public:
   using Clock = std::chrono::steady_clock;
 
   explicit SectionTimes(std::vector<std::string> names);
-  /// Adds the time since `start` to section `k` and returns now (the start of what follows).
-  Clock::time_point add_since(std::size_t k, Clock::time_point start) {
+  /// Adds the time since `start` to section `k`, counted as `calls` calls, and returns now (the
+  /// start of what follows).
+  Clock::time_point add_since(std::size_t k, Clock::time_point start, std::int64_t calls = 1) {
     const Clock::time_point now = Clock::now();
     seconds_[k] += std::chrono::duration<double>(now - start).count();
-    ++calls_[k];
+    calls_[k] += calls;
     return now;
   }
   void add(std::size_t k, double seconds, std::int64_t calls = 1) {

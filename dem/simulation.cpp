@@ -177,7 +177,7 @@ void Simulation::step() {
   if (damping_rate_ > 0) model::damp_velocities(particles_, damping_factor);
   time_ += dt;
   ++step_;
-  clock = times_->add_since(integration, clock);
+  clock = times_->add_since(integration, clock, 0); // the step's second half: one call per step
   if (at_control_update()) {
     update_control();
     times_->add_since(control_update, clock);

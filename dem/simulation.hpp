@@ -129,8 +129,11 @@ public:
   /// narrow phase (< 0: apart); guess is the normal an ovoid pair's iteration starts from.
   [[nodiscard]] double geometric_overlap(std::uint32_t i, std::uint32_t j, const Vec3& guess) const;
 
-  /// The sections of a step's wall time (times()).
+  /// The sections of a step's wall time (times()), and their names in the timing table.
   enum Section : std::size_t { integration, list_update, halo, force_pass, control_update, n_sections };
+  static std::vector<std::string> section_names() {
+    return {"integration", "list update", "halo", "force pass", "control update"};
+  }
   /// Wall time of this rank's steps by section, since construction; a copy of a simulation
   /// (prepare's compaction cycles) adds to the same record.
   [[nodiscard]] const SectionTimes& times() const { return *times_; }
@@ -167,8 +170,7 @@ private:
   bool watch_equilibrium_ = false;
   data::ContactSums contact_sums_;      ///< this rank's contact sums of the last measuring force pass
   std::int64_t contact_sums_step_ = -1; ///< the step whose forces they sum (-1: none)
-  std::shared_ptr<SectionTimes> times_ = std::make_shared<SectionTimes>(
-      std::vector<std::string>{"integration", "list update", "halo", "force pass", "control update"});
+  std::shared_ptr<SectionTimes> times_ = std::make_shared<SectionTimes>(section_names());
 };
 
 } // namespace aniso::dem

@@ -176,7 +176,7 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   // Each check measures two consecutive steps (moments_before, then moments) and uses their mean:
   // at a node where every link with a component along the force ends in solid, the force's
   // momentum bounces back every step and never damps (+-F/2 in turn), so one step alone would
-  // count -F/2 per such node and make K depend on tau (issue 23). The two-step mean is zero there
+  // count -F/2 per such node and make K depend on tau. The two-step mean is zero there
   // and leaves steady flow elsewhere unchanged.
   std::vector<MomentsRecord> moments(static_cast<std::size_t>(topology.n_fluid));
   std::vector<MomentsRecord> moments_before(moments.size());
@@ -187,7 +187,7 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
 
   FlowResult result;
   // Progress in decades of the relative change, towards the tolerance: the flux converges about
-  // exponentially, so decades come at a steady pace and the ETA holds (issue 23: the LBM printed
+  // exponentially, so decades come at a steady pace and the ETA holds (the LBM printed
   // nothing for minutes).
   const double decades_to_go = -std::log10(s.tolerance);
   Progress progress(logger, s.label, decades_to_go, 30.0);

@@ -5,7 +5,7 @@
 // Convergence: every `check_interval` steps the mean momentum J (superficial,
 // over all voxels) is reduced exactly, as the mean of two consecutive steps (a
 // node whose every link along the force ends in solid flips its momentum every
-// step and never damps; the mean removes it, issue 23); the run has converged when
+// step and never damps; the mean removes it); the run has converged when
 // |J(t) - J(t - check_interval)| <= tolerance |J(t)|. The result's fields are the
 // same two-step means.
 // Divergence: non-finite populations, a Mach number max|u|/c_s above

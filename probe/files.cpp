@@ -11,7 +11,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 namespace aniso::probe {
 namespace {
@@ -293,13 +292,7 @@ void write_probe_csv(const std::string& path, const ProbeResult& result) {
   }
   header += ",checks_passed";
   row += result.checks_passed ? ",1" : ",0";
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp);
-    out << header << '\n' << row << '\n';
-    if (!out) throw FileError(fmt::format("cannot write '{}'", temp));
-  }
-  std::filesystem::rename(temp, path);
+  h5::write_text_atomically(path, header + '\n' + row + '\n');
 }
 
 } // namespace aniso::probe

@@ -85,9 +85,12 @@ Mat3 mean_of(const std::vector<Mat3>& samples) {
 }
 
 ForkResult run_fork(const h5::Checkpoint& checkpoint, const std::string& path, int index,
-                    const ProbeConfig& config, const mpi::Comm& comm, const Logger& logger) {
+                    const ProbeConfig& config, const mpi::Comm& comm, const Logger& logger,
+                    ForkTimes* times) {
   const ForkSpec spec = fork_spec(index);
+  const auto restart_start = SectionTimes::Clock::now();
   dem::Simulation simulation = dem::io::from_checkpoint(checkpoint, path, comm);
+  if (times != nullptr) times->restart.add_since(0, restart_start);
   const double p0 = mean_stress_compression_positive(simulation.stress());
   require_file(p0 > 0, fmt::format("checkpoint '{}': mean stress {:.4g} Pa is not compressive; the probe "
                                    "needs a confined assembly",
@@ -129,6 +132,7 @@ ForkResult run_fork(const h5::Checkpoint& checkpoint, const std::string& path, i
                      : fmt::format("{}{} on x{}", spec.sign > 0 ? "+" : "-", config.increment, spec.axis + 1),
       half_steps, config.hold_steps, p0, mean_stress_compression_positive(final_stress), result.sliding_start,
       result.sliding_final, result.contacts_final);
+  if (times != nullptr) times->engine.merge(simulation.times());
   return result;
 }
 

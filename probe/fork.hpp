@@ -17,6 +17,8 @@
 #include "common/log.hpp"
 #include "common/mpi.hpp"
 #include "common/tensor.hpp"
+#include "common/timer.hpp"
+#include "dem/simulation.hpp"
 #include "probe/config.hpp"
 
 #include <cstdint>
@@ -55,12 +57,21 @@ struct ForkResult {
   std::int64_t sliding_final = 0;
 };
 
+/// Where this rank's forks spent their wall time: the engine's sections of their steps, and the
+/// restarts from the checkpoint (for the timing table).
+struct ForkTimes {
+  SectionTimes engine{dem::Simulation::section_names()};
+  SectionTimes restart{{"restart"}};
+};
+
 /// Mean of stress samples; InputError if there are none.
 Mat3 mean_of(const std::vector<Mat3>& samples);
 
 /// Runs fork `index` from `checkpoint` (read from `path`) on `comm` (collective; every rank
 /// passes the whole checkpoint). The same inputs give the same bits on any number of ranks.
+/// With `times`, adds the fork's wall time to it.
 ForkResult run_fork(const h5::Checkpoint& checkpoint, const std::string& path, int index,
-                    const ProbeConfig& config, const mpi::Comm& comm, const Logger& logger);
+                    const ProbeConfig& config, const mpi::Comm& comm, const Logger& logger,
+                    ForkTimes* times = nullptr);
 
 } // namespace aniso::probe

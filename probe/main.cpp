@@ -6,6 +6,8 @@
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "common/output_folder.hpp"
+#include "common/timer.hpp"
+#include "dem/protocol/run_timing.hpp"
 #include "probe/collect.hpp"
 #include "probe/config.hpp"
 #include "probe/files.hpp"
@@ -14,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 
 namespace {
@@ -109,6 +112,7 @@ int run_probe(int argc, char** argv, const mpi::Comm& comm) {
     return 0;
   }
 
+  const auto start = SectionTimes::Clock::now();
   const h5::Checkpoint checkpoint = h5::read_checkpoint(input, comm);
   const probe::ProbeSource probe_source = probe::probe_source(input, checkpoint, comm);
   logger->info("input '{}': {} particles, {} contacts, loading strain {:.5g}, content hash {}", input,
@@ -117,24 +121,37 @@ int run_probe(int argc, char** argv, const mpi::Comm& comm) {
   if (options.dry_run) return 0;
   if (comm.is_root()) create_output_folder(config.output_dir);
 
+  probe::ForkTimes times;
+  SectionTimes output({"output"});
   if (fork->parsed()) {
     const auto provenance = h5::make_provenance("aniso-probe fork", reader.effective_toml(), command, comm);
     const probe::ForkFile file{probe_source, probe::fork_settings(config),
-                               probe::run_fork(checkpoint, input, fork_index, config, comm, logger)};
+                               probe::run_fork(checkpoint, input, fork_index, config, comm, logger, &times)};
     const std::string path = probe::fork_path(config.output_dir, input, fork_index);
-    if (comm.is_root()) probe::write_fork_file(path, file, provenance);
+    {
+      const ScopedSection writing(output, 0);
+      if (comm.is_root()) probe::write_fork_file(path, file, provenance);
+    }
     logger->info("wrote {}", path);
-    return 0;
+  } else {
+    const auto provenance = h5::make_provenance("aniso-probe run", reader.effective_toml(), command, comm);
+    const auto results = probe::run_all_forks(checkpoint, input, config, comm, logger, &times);
+    std::array<probe::ForkFile, probe::n_fork_files> forks;
+    for (int k = 0; k < probe::n_fork_files; ++k)
+      forks[static_cast<std::size_t>(k)] = {probe_source, probe::fork_settings(config),
+                                            results[static_cast<std::size_t>(k)]};
+    std::string warning;
+    const probe::ProbeResult result = probe::assemble_result(forks, config, warning);
+    const ScopedSection writing(output, 0);
+    write_result(result_file, result, provenance, warning, logger, comm);
   }
-  const auto provenance = h5::make_provenance("aniso-probe run", reader.effective_toml(), command, comm);
-  const auto results = probe::run_all_forks(checkpoint, input, config, comm, logger);
-  std::array<probe::ForkFile, probe::n_fork_files> forks;
-  for (int k = 0; k < probe::n_fork_files; ++k)
-    forks[static_cast<std::size_t>(k)] = {probe_source, probe::fork_settings(config),
-                                          results[static_cast<std::size_t>(k)]};
-  std::string warning;
-  const probe::ProbeResult result = probe::assemble_result(forks, config, warning);
-  write_result(result_file, result, provenance, warning, logger, comm);
+  // The table: the engine's sections over this rank's forks, then restarting and writing.
+  SectionTimes probe_times({"restart", "output"});
+  probe_times.add(0, times.restart.seconds(0), times.restart.calls(0));
+  probe_times.add(1, output.seconds(0), output.calls(0));
+  const double wall = std::chrono::duration<double>(SectionTimes::Clock::now() - start).count();
+  dem::protocol::log_timing(logger, dem::protocol::run_timing(times.engine, probe_times, wall, comm), wall,
+                            comm.size());
   return 0;
 }
 

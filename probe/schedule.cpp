@@ -87,14 +87,15 @@ ForkResult unpack_fork(const std::vector<char>& bytes) {
 
 std::array<ForkResult, n_fork_files> run_all_forks(const h5::Checkpoint& checkpoint, const std::string& path,
                                                    const ProbeConfig& config, const mpi::Comm& comm,
-                                                   const Logger& logger) {
+                                                   const Logger& logger, ForkTimes* times) {
   const int n_ranks = comm.size();
   const int groups = fork_group_count(n_ranks);
   const int group = fork_group_of_rank(comm.rank(), n_ranks);
   mpi::Comm group_comm = comm.split(group, comm.rank());
   std::array<ForkResult, n_fork_files> results;
   for (int index = group; index < n_fork_files; index += groups) {
-    results[static_cast<std::size_t>(index)] = run_fork(checkpoint, path, index, config, group_comm, logger);
+    results[static_cast<std::size_t>(index)] =
+        run_fork(checkpoint, path, index, config, group_comm, logger, times);
   }
   group_comm.free();
   // The lowest world rank of each group holds its results; it broadcasts them to everyone.

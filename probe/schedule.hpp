@@ -21,9 +21,10 @@ int fork_group_count(int n_ranks);
 int fork_group_of_rank(int rank, int n_ranks);
 
 /// All seven forks of `checkpoint` over `comm` (collective); every rank receives every result.
+/// With `times`, adds the wall time of this rank's forks to it.
 std::array<ForkResult, n_fork_files> run_all_forks(const h5::Checkpoint& checkpoint, const std::string& path,
                                                    const ProbeConfig& config, const mpi::Comm& comm,
-                                                   const Logger& logger);
+                                                   const Logger& logger, ForkTimes* times = nullptr);
 
 /// Packs a fork result into bytes and back (for the broadcast); exact.
 std::vector<char> pack_fork(const ForkResult& fork);

@@ -130,7 +130,7 @@ std::vector<Corruption> corruptions() {
          rewrite<double>(p, "particles", "position", [=](auto& v) { v[3 * 4 + 1] = nan; });
        },
        {"/particles/position", "non-finite", "row 4", "column 1"}},
-      {"position_outside_the_cell", // a wrong stress and a wrong image, in every stage (issue 22)
+      {"position_outside_the_cell", // a wrong stress and a wrong image, in every stage
        [](const std::string& p) {
          const File file = File::open(p, File::Access::read_write);
          const std::vector<double> lengths = file.open_group("cell").read_dataset<double>("lengths", {3});

@@ -17,7 +17,7 @@ TEST(Progress, ThrottlesAndEstimatesRemainingTime) {
   EXPECT_FALSE(progress.update(0.2));
 }
 
-// A resumed run's estimate comes from its own pace since it started (issue 24: a load resumed at
+// A resumed run's estimate comes from its own pace since it started (a load resumed at
 // 91.6% said "ETA 1 s" after 11 s, as if it had done all 91.6% in them).
 TEST(Progress, EstimatesFromWhereThisRunStarted) {
   double now = 100.0;
@@ -28,7 +28,7 @@ TEST(Progress, EstimatesFromWhereThisRunStarted) {
   EXPECT_EQ(progress.line(0.3), "load: 50.0% (0.3 of 0.6), elapsed 20 s, ETA ?"); // no pace yet
 }
 
-// A stage that slows down near its end: the estimate follows the recent pace (issue 24: a paper-size
+// A stage that slows down near its end: the estimate follows the recent pace (a paper-size
 // compaction said "ETA 8 s" for 20 minutes at 98% while it crept towards seizing).
 TEST(Progress, EstimatesFromTheRecentPace) {
   double now = 0.0;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `aniso-dem import` and `export` (issue 24, item 1): a static assembly exported as a LAMMPS data
+# `aniso-dem import` and `export`: a static assembly exported as a LAMMPS data
 # file with its contact dump and imported again is the same static state (p within 1e-6 over a
 # fixed-cell hold, the same p history as the original to 1e-9); import -> export -> import gives
 # the same bits; 2 ranks import the same bits as 1; without the contact dump the tangential

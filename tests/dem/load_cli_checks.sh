@@ -11,7 +11,7 @@
 #    the stored step exactly as the refusal prints it (a run begun before the defaults changed).
 # 5. A mean stress of 1e-300 Pa (a rate of 1e-151 /s) is refused before anything runs, where
 #    it once ran forever; an inertial number of 0.9 runs with a warning that it is not
-#    quasi-static (issue 22).
+#    quasi-static.
 # 6. Keys that the checkpoint fixes (particle count, shear modulus, explosion overlap, ...) given
 #    with other values are refused naming each; the values used are the file's, and provenance
 #    records them (it once recorded the configured 500 particles for a 200-particle file).

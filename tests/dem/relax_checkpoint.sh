@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `aniso-dem relax` (issue 21, section 4): a checkpoint written at OVAL's increment tolerance
+# `aniso-dem relax`: a checkpoint written at OVAL's increment tolerance
 # (1e-2, no verified relaxation) loses about a fifth of p when its cell is held still; relaxed
 # with its own loading control it holds p within 1e-3 over the same hold, at the same strain and
 # a mean stress within the servo's tolerance, with the same bits on 1 and 2 ranks. Writing over

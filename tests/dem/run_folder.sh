@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Output folders keep one run each (issue 22): a fresh load refuses a folder that holds another
+# Output folders keep one run each: a fresh load refuses a folder that holds another
 # loading run unless --overwrite (which never removes its own input); --resume refuses another
 # run's history, a prepared assembly, a checkpoint beyond what the history reaches and a history
 # of another schema version (exit 3); a second writer is refused while the first holds the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Restored contacts must match the stored positions (issue 22): a checkpoint whose /contacts
+# Restored contacts must match the stored positions: a checkpoint whose /contacts
 # overlap was edited (x10), or from which one contact row was dropped, is refused with exit 3
 # naming the file and the pair, for spheres and for ovoids; the untouched file is accepted.
 #

@@ -167,7 +167,7 @@ TEST(Failures, DiameterMinNotBelowD50IsRejected) {
 }
 
 // (d) A checkpoint is refused for what the configuration would refuse, and for particle rows no
-// simulation can start from (issue 22: a control interval of 0 gave SIGFPE, zero particles
+// simulation can start from (a control interval of 0 gave SIGFPE, zero particles
 // SIGSEGV, a Poisson ratio of 0.7 ran as given). A particle outside the cell is refused by
 // h5::read_checkpoint, for every stage (tests/common/test_checkpoint.cpp).
 TEST(Failures, CheckpointOutsideTheConfigRangesIsRefused) {

@@ -14,7 +14,7 @@ make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$run" B
 
 fail() { echo "e2e: FAIL: $*" >&2; exit 1; }
 # Every stage's results: a stage the campaign takes for not built would be skipped silently.
-# Each stage's files lie in a folder of its own (issue 24).
+# Each stage's files lie in a folder of its own.
 for f in dem/prepared.h5 dem/load_000.h5 dem/load_001.h5 dem/load_002.h5 dem/history.h5 dem/history.csv report.md \
          figures/stress_strain.png figures/stress_strain.csv probe/probe_load_000.h5 probe/probe_load_002.h5 \
          voxel/voids_load_000.h5 voxel/voids_load_002.h5 voxel/image_load_002.h5 \
@@ -25,7 +25,7 @@ done
   || fail "the run folder holds more than the stage folders, figures, logs and report.md: $(ls "$run")"
 ! grep -q 'campaign: skipping' "$work/campaign.log" || fail "the campaign skipped a stage: $(grep 'skipping' "$work/campaign.log")"
 # Each stage run keeps its own log in logs/, and its lines are prefixed with the run's name there
-# and in the campaign's output (issue 24).
+# and in the campaign's output.
 for name in prepare load fabric probe_load_002_fork3 probe_collect_load_002 voxel_load_001 lbm_load_002 fabric_series; do
   log=$(ls "$run/logs/$name"*.log 2>/dev/null | head -1)
   [ -s "$log" ] || fail "no log of $name in logs/"

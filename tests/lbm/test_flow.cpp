@@ -47,7 +47,7 @@ TEST(Flow, PermeabilityIndependentOfTauWithinOnePercent) {
 
 /// A plane channel along x1 (fluid 0 <= x2 < 6 of 12) with a dead-end groove one voxel wide in x1
 /// and `depth` deep cut into its wall. Below its mouth, the groove's nodes have solid at the end of
-/// every link with a component along the force (issue 23, the blocked-node oscillation).
+/// every link with a component along the force (the blocked-node oscillation).
 h5::VoxelImage channel_with_groove(std::size_t depth) {
   h5::VoxelImage image = plane_channel(11, 8, 1); // 12 across x2 (fluid set below)
   for (std::size_t k = 0; k < image.shape[2]; ++k)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # aniso-voxel on a checkpoint whose image is all solid (particles swollen to fill the cell) or all
 # void (particles shrunk below a voxel) stops with exit 4 and says which, writing no result;
-# it once wrote NaN and inf medians with exit 0 (issue 22).
+# it once wrote NaN and inf medians with exit 0.
 #
 # usage: degenerate_images.sh BUILD_DIR WORK_DIR
 set -euo pipefail

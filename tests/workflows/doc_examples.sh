@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Python examples of docs/formats/ ("Reading it elsewhere") run as written against files the
-# programs wrote: one was left reading a parameter name that does not exist (issue 24).
+# programs wrote: one was left reading a parameter name that does not exist.
 #
 # usage: doc_examples.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -euo pipefail

@@ -180,7 +180,7 @@ ids = lambda name: [j[0] for j in jobs[name]]
 def fields(path):
     return dict(f.split("=", 1) for f in open(path).read().split() if "=" in f)
 stem = "load_000"
-# The failed fork alone is resubmitted, not the whole array (issue 24).
+# The failed fork alone is resubmitted, not the whole array.
 assert [j[1] for j in jobs[f"probe-{stem}"]] == [" (array of 7)", " (tasks 3 of 7)"], jobs[f"probe-{stem}"]
 assert all(j[1] == " (array of 3)" for j in jobs[f"lbm-{stem}"]), jobs[f"lbm-{stem}"]
 for k in range(7):

@@ -210,7 +210,7 @@ def submitted_plan(stdout):
 
 
 class WholeConfigCheck(unittest.TestCase):
-    """A misspelt key of a later stage stops the campaign before the DEM starts (issue 24)."""
+    """A misspelt key of a later stage stops the campaign before the DEM starts."""
 
     def setUp(self):
         self.dir = tempfile.TemporaryDirectory()
@@ -262,7 +262,7 @@ class WholeConfigCheck(unittest.TestCase):
 class SubmitDryRun(unittest.TestCase):
     def test_only_the_missing_array_tasks_are_resubmitted(self):
         # A finished load whose probe fork 3 of load_001 was deleted: that one task goes again, not
-        # the whole 7-task array (issue 24).
+        # the whole 7-task array.
         with tempfile.TemporaryDirectory() as folder:
             bin_dir, out = os.path.join(folder, "bin"), os.path.join(folder, "run")
             os.mkdir(bin_dir)
@@ -290,7 +290,7 @@ class SubmitDryRun(unittest.TestCase):
 
 
     def test_resources_per_kind_go_into_the_job_scripts(self):
-        # [workflow.resources.<kind>] sets each kind's sbatch options; they override --ranks (issue 24).
+        # [workflow.resources.<kind>] sets each kind's sbatch options; they override --ranks.
         with tempfile.TemporaryDirectory() as folder:
             bin_dir = os.path.join(folder, "bin")
             os.mkdir(bin_dir)

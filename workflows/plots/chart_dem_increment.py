@@ -6,7 +6,7 @@ by a relaxation to an unbalanced-force ratio below a tolerance
 (dem.load.increment, dem.load.increment_tolerance), and compares settings that
 differ in one thing: the increment (3e-4, 1e-4, 3e-5), the tolerance (1e-2, 1e-3),
 the damping while relaxing (0.1, 0.3) and the rate within an increment
-(I = 1e-3, 3e-3). Goal (issue 19): q/p within 2 % and the volumetric strain
+(I = 1e-3, 3e-3). Goal: q/p within 2 % and the volumetric strain
 within 0.1 % (absolute) of the finer setting. Runs go one at a time; finished
 runs in the work folder are reused.
 

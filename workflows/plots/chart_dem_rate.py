@@ -7,7 +7,7 @@ levels of viscous contact damping (dem.integration.damping). At the default
 damping every rate is run three times, at time steps of 0.49, 0.50 and 0.51 of
 the Rayleigh step: the same physics, so their spread is the chaotic floor of
 one realization. Each rate's mean curve is compared with the next slower
-rate's (issue 19: mean q/p within 2 %, volumetric strain within 0.1 %
+rate's (mean q/p within 2 %, volumetric strain within 0.1 %
 absolute), beside the floor. Two runs go at once (one per core). A finished
 run in the work folder (same final strain) is reused, so an interrupted chart
 continues where it stopped.

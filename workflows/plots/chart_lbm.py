@@ -83,7 +83,7 @@ def main():
         ax_res.loglog(seconds, errors, marker + "-", label=f"{precision}")
         for d, s, e in zip(diameters, seconds, errors):
             ax_res.annotate(f"{d}", (s, e), textcoords="offset points", xytext=(4, 4), fontsize=8)
-    ax_res.axhline(2.0, color="grey", ls=":", label="2% (issue 8)")
+    ax_res.axhline(2.0, color="grey", ls=":", label="2%")
     ax_res.set_xlabel("wall time of 3 runs [s] (labels: voxels per diameter)")
     ax_res.set_ylabel("|K11 / K(Zick & Homsy) - 1| [%]")
     ax_res.set_title(f"(a) resolution, sphere array, phi = {PHI}")

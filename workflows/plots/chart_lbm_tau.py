@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Cost against the TRT relaxation time tau (issue 23, item 3): docs/charts/lbm_tau.png.
+"""Cost against the TRT relaxation time tau: docs/charts/lbm_tau.png.
 
 For five images (a simple cubic sphere array at solid fraction 0.125 and 16 voxels per diameter,
 random packings of spheres at porosity 0.4 with 10 and 6 voxels per diameter in 64^3 and 10 in 96^3,

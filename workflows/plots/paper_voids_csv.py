@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The committed CSVs of a paper-size shape's void and permeability stages (issue 21, section 5).
+"""The committed CSVs of a paper-size shape's void and permeability stages.
 
 Reads runs/paper-SHAPE/voxel/voids_load_NNN.h5 (aniso-voxel), runs/paper-SHAPE/lbm/permeability_image_
 load_NNN.h5 (aniso-lbm, where run) and the checkpoints runs/paper-SHAPE/load_NNN.h5 they came from (for

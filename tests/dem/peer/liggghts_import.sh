@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A static state made by LIGGGHTS 3.8 (Debian package) comes into aniso static (issue 24, item 1).
+# A static state made by LIGGGHTS 3.8 (Debian package) comes into aniso static.
 # An aniso assembly, exported, is settled by LIGGGHTS with its own Hertz-Mindlin contacts (they
 # start without tangential history, so it finds its own static state, at a lower p); LIGGGHTS
 # writes it with `write_data` and its tangential forces with `compute pair/gran/local id
