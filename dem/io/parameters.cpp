@@ -417,10 +417,9 @@ const std::vector<Parameter>& parameters() {
   return table;
 }
 
-// A real, integer or choice member as a double (a choice as its word's index).
-double member_value(const Parameter& parameter, const DemConfig& config) {
-  DemConfig& readable =
-      const_cast<DemConfig&>(config); // the accessors serve the reader too; nothing is written
+// A real, integer or choice member as a double (a choice as its word's index). The accessors
+// serve the reader too, which writes through them, so they see a copy here.
+double member_value(const Parameter& parameter, DemConfig readable) {
   return std::visit(
       [&](auto access) -> double {
         using Access = decltype(access);

@@ -116,52 +116,176 @@ void start_loading(Simulation& simulation, const DemConfig& config) {
   simulation.set_control(model::biaxial_plane_strain(simulation.control(), rate, config.load.mean_stress));
 }
 
+namespace {
+
+// Where the loading's events fall, each from the strain alone, so that a resumed run meets them
+// where the uninterrupted one did: the next history row (every history_interval), the end of
+// the next increment (at multiples of load.increment and at every checkpoint strain, so that
+// each checkpoint is a relaxed state) and the next checkpoint.
+class StrainSchedule {
+public:
+  StrainSchedule(const LoadConfig& load, double strain)
+      : load_(load), next_history_(next_multiple(strain, load.history_interval)),
+        next_increment_(load.increment > 0 ? increment_end(strain) : 0) {
+    while (next_checkpoint_ < load.checkpoint_strains.size() &&
+           load.checkpoint_strains[next_checkpoint_] <= strain)
+      ++next_checkpoint_;
+  }
+  [[nodiscard]] bool increment_ends(double strain) const {
+    return load_.increment > 0 && strain >= next_increment_;
+  }
+  void increment_relaxed(double strain) { next_increment_ = increment_end(strain); }
+  [[nodiscard]] bool history_due(double strain) const {
+    return strain >= next_history_ || strain >= load_.final_strain;
+  }
+  void history_written(double strain) {
+    while (next_history_ <= strain)
+      next_history_ += load_.history_interval;
+  }
+  [[nodiscard]] bool checkpoint_due(double strain) const {
+    return next_checkpoint_ < load_.checkpoint_strains.size() &&
+           strain >= load_.checkpoint_strains[next_checkpoint_];
+  }
+  [[nodiscard]] std::size_t checkpoint() const { return next_checkpoint_; }
+  void checkpoint_written() { ++next_checkpoint_; }
+
+private:
+  [[nodiscard]] double increment_end(double strain) const {
+    double end = next_multiple(strain, load_.increment);
+    for (const double checkpoint_strain : load_.checkpoint_strains)
+      if (checkpoint_strain > strain) end = std::min(end, checkpoint_strain);
+    return end;
+  }
+
+  const LoadConfig& load_;
+  double next_history_;
+  double next_increment_;
+  std::size_t next_checkpoint_ = 0;
+};
+
+// One loading run: the simulation, its history and files, and what the summary counts.
+class LoadingRun {
+public:
+  LoadingRun(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
+             const h5::Provenance& provenance, const Logger& logger, const std::string& run_id)
+      : simulation_(simulation), config_(config), output_dir_(output_dir), provenance_(provenance),
+        logger_(logger), labels_{{}, run_id} {}
+
+  void start_history(bool resuming);
+  // OVAL's loading: each strain increment is followed by a relaxation to a small force
+  // imbalance, so the path is a sequence of near-static states (docs/methods/dem.md).
+  void relax_increment(double strain);
+  void append_history_row() { history_.append(history_row(simulation_, config_)); }
+  void write_checkpoint(std::size_t index, double strain);
+  // SIGTERM (a SLURM time limit or scancel) ends the run at a control update, every rank at
+  // the same step, with a checkpoint from which --resume continues exactly: the increments,
+  // history rows and checkpoints ahead all follow from the strain.
+  void write_interrupted(double strain);
+  void relax(const EquilibriumConfig& tolerances, const std::string& label);
+  LoadSummary finish(std::int64_t start_step, double wall_seconds);
+
+private:
+  Simulation& simulation_;
+  const DemConfig& config_;
+  const std::string& output_dir_;
+  const h5::Provenance& provenance_;
+  const Logger& logger_;
+  const io::CheckpointLabels labels_;
+  io::History history_;
+  SectionTimes output_{{"output"}}; // checkpoints and the history written, for the timing table
+  LoadSummary summary_;
+};
+
+void LoadingRun::start_history(bool resuming) {
+  if (resuming) {
+    history_ = io::History::read(output_dir_);
+    const auto step = static_cast<double>(simulation_.step_count());
+    require_history_continues(history_, labels_.run_id, step, output_dir_);
+    io::require_resume_matches(config_, simulation_.settings(), simulation_.control(),
+                               simulation_.critical_time_step());
+    history_.truncate_after_step(step);
+  } else {
+    history_.set_run_id(labels_.run_id);
+    append_history_row();
+  }
+}
+
+void LoadingRun::relax(const EquilibriumConfig& tolerances, const std::string& label) {
+  const Relaxation relaxed =
+      relax_to_equilibrium(simulation_, tolerances, config_.equilibrium.max_steps, logger_, label);
+  summary_.relaxation_steps += relaxed.steps;
+  summary_.relaxation_seconds += relaxed.seconds;
+}
+
+void LoadingRun::relax_increment(double strain) {
+  EquilibriumConfig tolerances = config_.equilibrium;
+  tolerances.tolerance = config_.load.increment_tolerance;
+  tolerances.verify_steps = 0;
+  relax(tolerances, fmt::format("relaxation after the increment to strain {:.5g}", strain));
+}
+
+void LoadingRun::write_checkpoint(std::size_t index, double strain) {
+  const std::string path = load_checkpoint_path(output_dir_, index);
+  if (config_.equilibrium.at_checkpoints) {
+    relax(config_.equilibrium, fmt::format("relaxation before checkpoint {}", index));
+    append_history_row(); // the relaxed state, at the same strain
+  }
+  // The log reports the ratios measured for the file: simulation.equilibrium() is stale
+  // when equilibrium is not watched (no relaxation at checkpoints).
+  const ScopedSection writing(output_, 0);
+  const h5::Checkpoint checkpoint = io::write_checkpoint(path, simulation_, labels_, provenance_);
+  if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
+  logger_->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
+                "ratio {:.2e}, kinetic/elastic {:.2e})",
+                index, strain, path, mean_stress_compression_positive(simulation_.stress()),
+                simulation_.servo_error(), checkpoint.unbalanced_force_ratio,
+                checkpoint.kinetic_elastic_ratio);
+  summary_.checkpoints.push_back(path);
+}
+
+void LoadingRun::write_interrupted(double strain) {
+  summary_.interrupted_checkpoint = output_dir_ + "/load_interrupted.h5";
+  const ScopedSection writing(output_, 0);
+  io::write_checkpoint(summary_.interrupted_checkpoint, simulation_, labels_, provenance_);
+  logger_->warn(
+      "load: stopped on SIGTERM at strain {:.6g} (step {}): wrote {}; continue with --input {} --resume",
+      strain, simulation_.step_count(), summary_.interrupted_checkpoint, summary_.interrupted_checkpoint);
+}
+
+LoadSummary LoadingRun::finish(std::int64_t start_step, double wall_seconds) {
+  summary_.final_strain = compressive_strain(simulation_);
+  summary_.steps = simulation_.step_count() - start_step;
+  summary_.wall_seconds = wall_seconds;
+  summary_.timing = run_timing(simulation_.times(), output_, wall_seconds, simulation_.comm());
+  history_.set_timing(summary_.timing, wall_seconds);
+  if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
+  simulation_.comm().barrier(); // the history is on disk before anyone reports success
+  const auto& ratio = history_.column("stress_ratio");
+  const auto& strain_11 = history_.column("strain_11");
+  for (std::size_t r = 0; r < ratio.size(); ++r) {
+    if (ratio[r] > summary_.peak_stress_ratio) {
+      summary_.peak_stress_ratio = ratio[r];
+      summary_.peak_strain = -strain_11[r];
+    }
+  }
+  return summary_;
+}
+
+} // namespace
+
 LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
                         const h5::Provenance& provenance, const Logger& logger, bool resuming,
                         const std::string& run_id) {
   const auto& load = config.load;
   const auto start_wall = std::chrono::steady_clock::now();
-  io::History history;
-  if (resuming) {
-    history = io::History::read(output_dir);
-    require_history_continues(history, run_id, static_cast<double>(simulation.step_count()), output_dir);
-    io::require_resume_matches(config, simulation.settings(), simulation.control(),
-                               simulation.critical_time_step());
-    history.truncate_after_step(static_cast<double>(simulation.step_count()));
-  } else {
-    history.set_run_id(run_id);
-    history.append(history_row(simulation, config));
-  }
-  const io::CheckpointLabels labels{{}, run_id};
-  // Checkpoints and the history written, for the timing table.
-  SectionTimes output({"output"});
-  LoadSummary summary;
   const std::int64_t start_step = simulation.step_count();
-  double next_history =
-      (std::floor(compressive_strain(simulation) / load.history_interval) + 1) * load.history_interval;
-  EquilibriumConfig increment_tolerances = config.equilibrium;
-  increment_tolerances.tolerance = load.increment_tolerance;
-  increment_tolerances.verify_steps = 0;
-  std::size_t next_checkpoint = 0;
-  while (next_checkpoint < load.checkpoint_strains.size() &&
-         load.checkpoint_strains[next_checkpoint] <= compressive_strain(simulation)) {
-    ++next_checkpoint;
-  }
-  // Increments end at multiples of load.increment and at every checkpoint strain, so that
-  // each checkpoint is a relaxed state; both follow from the strain alone, so a resumed run
-  // ends them where the uninterrupted one did.
-  const auto increment_end = [&](double strain) {
-    double end = next_multiple(strain, load.increment);
-    for (const double checkpoint_strain : load.checkpoint_strains)
-      if (checkpoint_strain > strain) end = std::min(end, checkpoint_strain);
-    return end;
-  };
-  double next_increment = load.increment > 0 ? increment_end(compressive_strain(simulation)) : 0;
-  const double rate = -simulation.control().target[0];
+  LoadingRun run(simulation, config, output_dir, provenance, logger, run_id);
+  run.start_history(resuming);
+  StrainSchedule schedule(load, compressive_strain(simulation));
   logger->info(
-      "load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s", rate,
-      load.inertial_number, compressive_strain(simulation), load.final_strain,
-      simulation.settings().time_step);
+      "load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s",
+      -simulation.control().target[0], load.inertial_number, compressive_strain(simulation),
+      load.final_strain, simulation.settings().time_step);
   Progress progress(logger, "load", load.final_strain, 10.0, {}, compressive_strain(simulation));
   Phase loading(simulation, "load");
   for (double strain = compressive_strain(simulation); strain < load.final_strain;
@@ -169,75 +293,25 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
     loading.step();
     strain = compressive_strain(simulation);
     progress.update(strain);
-    if (load.increment > 0 && strain >= next_increment) {
-      // OVAL's loading: each strain increment is followed by a relaxation to a small force
-      // imbalance, so the path is a sequence of near-static states (docs/methods/dem.md).
-      const Relaxation relaxed =
-          relax_to_equilibrium(simulation, increment_tolerances, config.equilibrium.max_steps, logger,
-                               fmt::format("relaxation after the increment to strain {:.5g}", strain));
-      summary.relaxation_steps += relaxed.steps;
-      summary.relaxation_seconds += relaxed.seconds;
-      next_increment = increment_end(strain);
+    if (schedule.increment_ends(strain)) {
+      run.relax_increment(strain);
+      schedule.increment_relaxed(strain);
     }
-    if (strain >= next_history || strain >= load.final_strain) {
-      history.append(history_row(simulation, config));
-      while (next_history <= strain)
-        next_history += load.history_interval;
+    if (schedule.history_due(strain)) {
+      run.append_history_row();
+      schedule.history_written(strain);
     }
-    if (next_checkpoint < load.checkpoint_strains.size() &&
-        strain >= load.checkpoint_strains[next_checkpoint]) {
-      const std::string path = load_checkpoint_path(output_dir, next_checkpoint);
-      if (config.equilibrium.at_checkpoints) {
-        const Relaxation relaxed =
-            relax_to_equilibrium(simulation, config.equilibrium, config.equilibrium.max_steps, logger,
-                                 fmt::format("relaxation before checkpoint {}", next_checkpoint));
-        summary.relaxation_steps += relaxed.steps;
-        summary.relaxation_seconds += relaxed.seconds;
-        history.append(history_row(simulation, config)); // the relaxed state, at the same strain
-      }
-      // The log reports the ratios measured for the file: simulation.equilibrium() is stale
-      // when equilibrium is not watched (no relaxation at checkpoints).
-      const ScopedSection writing(output, 0);
-      const h5::Checkpoint checkpoint = io::write_checkpoint(path, simulation, labels, provenance);
-      if (simulation.comm().is_root()) history.write(output_dir, provenance, simulation.step_count());
-      logger->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
-                   "ratio {:.2e}, kinetic/elastic {:.2e})",
-                   next_checkpoint, strain, path, mean_stress_compression_positive(simulation.stress()),
-                   simulation.servo_error(), checkpoint.unbalanced_force_ratio,
-                   checkpoint.kinetic_elastic_ratio);
-      summary.checkpoints.push_back(path);
-      ++next_checkpoint;
+    if (schedule.checkpoint_due(strain)) {
+      run.write_checkpoint(schedule.checkpoint(), strain);
+      schedule.checkpoint_written();
     }
-    // SIGTERM (a SLURM time limit or scancel) ends the run at a control update, every rank at
-    // the same step, with a checkpoint from which --resume continues exactly: the increments,
-    // history rows and checkpoints ahead all follow from the strain.
     if (simulation.at_control_update() && stop_requested(simulation.comm())) {
-      summary.interrupted_checkpoint = output_dir + "/load_interrupted.h5";
-      const ScopedSection writing(output, 0);
-      io::write_checkpoint(summary.interrupted_checkpoint, simulation, labels, provenance);
-      logger->warn("load: stopped on SIGTERM at strain {:.6g} (step {}): wrote {}; continue with --input {} "
-                   "--resume",
-                   strain, simulation.step_count(), summary.interrupted_checkpoint,
-                   summary.interrupted_checkpoint);
+      run.write_interrupted(strain);
       break;
     }
   }
-  summary.final_strain = compressive_strain(simulation);
-  summary.steps = simulation.step_count() - start_step;
-  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_wall).count();
-  summary.timing = run_timing(simulation.times(), output, summary.wall_seconds, simulation.comm());
-  history.set_timing(summary.timing, summary.wall_seconds);
-  if (simulation.comm().is_root()) history.write(output_dir, provenance, simulation.step_count());
-  simulation.comm().barrier(); // the history is on disk before anyone reports success
-  const auto& ratio = history.column("stress_ratio");
-  const auto& strain_11 = history.column("strain_11");
-  for (std::size_t r = 0; r < ratio.size(); ++r) {
-    if (ratio[r] > summary.peak_stress_ratio) {
-      summary.peak_stress_ratio = ratio[r];
-      summary.peak_strain = -strain_11[r];
-    }
-  }
-  return summary;
+  return run.finish(start_step,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start_wall).count());
 }
 
 } // namespace aniso::dem::protocol
