@@ -161,11 +161,11 @@ int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, c
     result = io::write_checkpoint(output, simulation, {checkpoint.rng_state, checkpoint.run_id}, provenance);
   }
   context.logger->info(
-      "relax of '{}': {} steps, p {:.6g} -> {:.6g} Pa, void ratio {:.5f} -> {:.5f}, unbalanced-force "
-      "ratio {:.2e} -> {:.2e}, kinetic/elastic {:.2e}; wrote {}",
-      input, relaxed.steps, p_before, mean_stress_compression_positive(simulation.stress()), e_before,
-      void_ratio(), checkpoint.unbalanced_force_ratio, result.unbalanced_force_ratio,
-      result.kinetic_elastic_ratio, output);
+      "relax of '{}': {} steps ({} verifying, {} windows left), p {:.6g} -> {:.6g} Pa, void ratio {:.5f} -> "
+      "{:.5f}, unbalanced-force ratio {:.2e} -> {:.2e}, kinetic/elastic {:.2e}; wrote {}",
+      input, relaxed.steps, relaxed.verifying_steps, relaxed.windows_left, p_before,
+      mean_stress_compression_positive(simulation.stress()), e_before, void_ratio(),
+      checkpoint.unbalanced_force_ratio, result.unbalanced_force_ratio, result.kinetic_elastic_ratio, output);
   const double wall = seconds_since(start);
   protocol::log_timing(context.logger,
                        protocol::run_timing(simulation.times(), writing_times, wall, context.comm), wall,

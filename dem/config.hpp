@@ -68,13 +68,24 @@ struct LoadConfig {
   double history_interval = 1e-4;         ///< strain between history rows
   double increment = 0;                   ///< strain per increment, each followed by a relaxation (0: none)
   double increment_tolerance = 1e-2;      ///< unbalanced-force ratio that ends an increment's relaxation
+  /// Athermal quasi-static loading: each increment is one affine step of the cell, then minimised
+  /// to increment_tolerance; the path depends on the increment size alone, not on a rate.
+  bool quasi_static = false;
+};
+
+/// How a relaxation reaches a static state (docs/decisions.md, entry 11).
+enum class Relaxer : std::uint8_t {
+  damped = 0, ///< global viscous damping of the fluctuating motion, ratio `damping`
+  fire = 1,   ///< the FIRE minimiser on the fluctuating motion (dem/protocol/fire.hpp)
 };
 
 /// Static equilibrium: of the prepared assembly, of every load checkpoint, of `hold`.
 struct EquilibriumConfig {
   double tolerance = 1e-4;           ///< unbalanced-force ratio at which a state counts as static
   double stress_tolerance = 1e-3;    ///< |p - p_target| / p_target at the same time
-  double damping = 0.1;              ///< global damping ratio while relaxing
+  Relaxer method = Relaxer::damped;  ///< how the relaxations reach it
+  double damping = 0.1;              ///< global damping ratio while relaxing (Relaxer::damped)
+  double fire_time_step_factor = 1;  ///< largest FIRE time step, in the run's steps
   std::int64_t verify_steps = 20000; ///< the tolerances must then hold this long without extra damping
   std::int64_t max_steps = 500000;   ///< a relaxation that needs more stops with exit 5
   bool at_checkpoints = true;        ///< relax before writing each load checkpoint

@@ -59,7 +59,7 @@ fi
     attempt=${log%.log}.unverified_attempt.log
     attempt_restarts=0
     [ -f "$attempt" ] && attempt_restarts=$(grep -c "relaxing again" "$attempt" || true)
-    row=$(echo "$line" | sed -nE 's/.*relax of .*\/(load_[0-9]+)\.h5.: ([0-9]+) steps, p ([^ ]+) -> ([^ ]+) Pa, void ratio ([^ ]+) -> ([^ ]+), unbalanced-force ratio ([^ ]+) -> ([^,]+),.*/\1,\2,'"$restarts"',\3,\4,\5,\6,\7,\8,'"$verified,$attempt_restarts"'/p')
+    row=$(echo "$line" | sed -nE 's/.*relax of .*\/(load_[0-9]+)\.h5.: ([0-9]+) steps( \([^)]*\))?, p ([^ ]+) -> ([^ ]+) Pa, void ratio ([^ ]+) -> ([^ ]+), unbalanced-force ratio ([^ ]+) -> ([^,]+),.*/\1,\2,'"$restarts"',\4,\5,\6,\7,\8,\9,'"$verified,$attempt_restarts"'/p')
     [ -n "$row" ] || { echo "relaxed_csvs.sh: $log: the closing line is not aniso-dem relax's 'relax of ...: N steps, p ... -> ... Pa, void ratio ..., unbalanced-force ratio ...' (format changed?)" >&2; exit 3; }
     echo "$row"
   done

@@ -51,7 +51,18 @@ using Integer = std::int64_t& (*)(DemConfig&);
 using Boolean = bool& (*)(DemConfig&);
 using Text = std::string& (*)(DemConfig&);
 using Reals = std::vector<double>& (*)(DemConfig&);
-using Choice = model::HertzRadius& (*)(DemConfig&);
+// A choice key's member, an enum, as the index of its word.
+struct Choice {
+  int (*get)(const DemConfig&);
+  void (*set)(DemConfig&, int);
+};
+template <auto... Path> constexpr Choice choice() {
+  return {[](const DemConfig& config) { return static_cast<int>((config.*....*Path)); },
+          [](DemConfig& config, int index) {
+            auto& value = (config.*....*Path);
+            value = static_cast<std::remove_cvref_t<decltype(value)>>(index);
+          }};
+}
 using Seed = std::uint64_t& (*)(DemConfig&);
 using ConfigMember = std::variant<std::monostate, Real, Integer, Boolean, Text, Reals, Choice, Seed>;
 
@@ -188,7 +199,7 @@ const std::vector<Parameter>& parameters() {
        .range = Range::non_negative(),
        .help = "inter-particle friction during compaction cycles"},
       {.key = "dem.material.hertz_radius",
-       .config = &member<&D::material, &MaterialConfig::hertz_radius>,
+       .config = choice<&D::material, &MaterialConfig::hertz_radius>(),
        .help = "ovoid Hertz radius: 'halfwidth' R* = a_i a_j / (a_i + a_j) as in Kuhn's code, or 'curvature' "
                "(elliptic Hertz from the surface curvatures)",
        .attribute = "hertz_radius_curvature",
@@ -399,6 +410,17 @@ const std::vector<Parameter>& parameters() {
        .config = &member<&D::equilibrium, &EquilibriumConfig::max_steps>,
        .range = Range::closed(1, 1e10),
        .help = "most time steps of one relaxation; beyond it the run stops (exit 5)"},
+      {.key = "dem.equilibrium.method",
+       .config = choice<&D::equilibrium, &EquilibriumConfig::method>(),
+       .help = "how a relaxation reaches a static state: 'fire' (the FIRE minimiser on the fluctuating "
+               "motion) or 'damped' (global viscous damping of ratio dem.equilibrium.damping)",
+       .words = {"damped", "fire"}},
+      {.key = "dem.equilibrium.fire_time_step_factor",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::fire_time_step_factor>,
+       .unit = units::none,
+       .range = Range::closed(1.0, 4.0),
+       .help = "largest time step of the FIRE minimiser, in the run's time steps (kept below the "
+               "Rayleigh step)"},
       {.key = "dem.equilibrium.at_checkpoints",
        .config = &member<&D::equilibrium, &EquilibriumConfig::at_checkpoints>,
        .help = "relax to equilibrium (cell held, p servoed) before each load checkpoint"},
@@ -408,6 +430,10 @@ const std::vector<Parameter>& parameters() {
        .range = Range::closed(0.0, 0.1),
        .help = "strain per loading increment, each followed by a relaxation to increment_tolerance (Kuhn's "
                "OVAL practice); 0: continuous loading"},
+      {.key = "dem.load.quasi_static",
+       .config = &member<&D::load, &LoadConfig::quasi_static>,
+       .help = "athermal quasi-static loading: each increment one affine step of the cell, then relaxed to "
+               "increment_tolerance (needs dem.load.increment > 0); the inertial number then sets no rate"},
       {.key = "dem.load.increment_tolerance",
        .config = &member<&D::load, &LoadConfig::increment_tolerance>,
        .unit = units::none,
@@ -426,7 +452,7 @@ double member_value(const Parameter& parameter, DemConfig readable) {
         if constexpr (std::is_same_v<Access, Real> || std::is_same_v<Access, Integer>) {
           return static_cast<double>(access(readable));
         } else if constexpr (std::is_same_v<Access, Choice>) {
-          return static_cast<double>(static_cast<int>(access(readable)));
+          return static_cast<double>(access.get(readable));
         } else {
           check_invariant(false, "a stored parameter is a real, an integer or a choice");
           return 0.0;
@@ -444,7 +470,7 @@ void set_member_value(const Parameter& parameter, DemConfig& config, double valu
         } else if constexpr (std::is_same_v<Access, Integer>) {
           access(config) = static_cast<std::int64_t>(value);
         } else if constexpr (std::is_same_v<Access, Choice>) {
-          access(config) = static_cast<model::HertzRadius>(static_cast<int>(value));
+          access.set(config, static_cast<int>(value));
         }
       },
       parameter.config);
@@ -511,12 +537,12 @@ void read_parameter(const Parameter& parameter, config::Reader& reader, DemConfi
           value = reader.reals(parameter.key, value, parameter.unit, parameter.range, parameter.min_count,
                                parameter.help);
         } else if constexpr (std::is_same_v<Access, Choice>) {
-          auto& value = access(config);
           const std::string word =
-              reader.choice(parameter.key, parameter.words.at(static_cast<std::size_t>(value)),
+              reader.choice(parameter.key, parameter.words.at(static_cast<std::size_t>(access.get(config))),
                             parameter.words, parameter.help);
-          value = static_cast<std::remove_reference_t<decltype(value)>>(
-              std::find(parameter.words.begin(), parameter.words.end(), word) - parameter.words.begin());
+          access.set(config,
+                     static_cast<int>(std::find(parameter.words.begin(), parameter.words.end(), word) -
+                                      parameter.words.begin()));
         }
       },
       parameter.config);
@@ -542,6 +568,9 @@ void check_consistency(const DemConfig& c) {
                             c.prepare.cell_aspect.size()));
   require_input(c.prepare.seize_stress < c.prepare.confining_pressure,
                 "config: dem.prepare.seize_stress must be below dem.prepare.confining_pressure");
+  require_input(
+      !c.load.quasi_static || c.load.increment > 0,
+      "config: dem.load.quasi_static needs dem.load.increment > 0 (the strain of each affine step)");
   // load_NNN.h5 is numbered in list order and the loading passes each strain once.
   const auto& l = c.load;
   for (std::size_t k = 0; k < l.checkpoint_strains.size(); ++k) {

@@ -13,16 +13,27 @@
 
 namespace aniso::dem::model {
 
+Vec3 inverse_inertia_world_times(const data::Particles& particles, std::size_t k, const Vec3& v) {
+  if (particles.aspect_ratio[k] == 1.0) return v.cwiseQuotient(particles.inertia[k]);
+  return inverse_inertia_times(particles.inertia[k], particle_axis(particles.orientation[k]), v);
+}
+
 void kick(data::Particles& particles, double dt) {
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     particles.velocity[k] += (dt / particles.mass[k]) * particles.force[k];
     if (particles.aspect_ratio[k] == 1.0) {
-      particles.angular_velocity[k] += particles.torque[k].cwiseQuotient(particles.inertia[k]) * dt;
+      particles.angular_velocity[k] += inverse_inertia_world_times(particles, k, particles.torque[k]) * dt;
     } else {
-      const Vec3 axis = particle_axis(particles.orientation[k]);
-      particles.angular_velocity[k] +=
-          dt * inverse_inertia_times(particles.inertia[k], axis, particles.torque[k]);
+      particles.angular_velocity[k] += dt * inverse_inertia_world_times(particles, k, particles.torque[k]);
     }
+  }
+}
+
+void steer_velocities(data::Particles& particles, double keep, double toward) {
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
+    particles.velocity[k] = keep * particles.velocity[k] + (toward / particles.mass[k]) * particles.force[k];
+    particles.angular_velocity[k] = keep * particles.angular_velocity[k] +
+                                    toward * inverse_inertia_world_times(particles, k, particles.torque[k]);
   }
 }
 

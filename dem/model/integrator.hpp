@@ -12,6 +12,13 @@ namespace aniso::dem::model {
 /// axisymmetric for ovoids, so I_world^-1 needs only the particle axis).
 void kick(data::Particles& particles, double dt);
 
+/// I_world^-1 v of particle k: v / I for a sphere, the axisymmetric inverse for an ovoid.
+Vec3 inverse_inertia_world_times(const data::Particles& particles, std::size_t k, const Vec3& v);
+
+/// The minimiser's steering (protocol/fire.hpp): every owned particle's fluctuating velocity
+/// becomes keep v + toward F/m and its angular velocity keep omega + toward I^-1 T.
+void steer_velocities(data::Particles& particles, double keep, double toward);
+
 /// Global viscous damping of the fluctuating motion: multiplies every owned particle's
 /// fluctuating and angular velocity by `factor` = exp(-gamma h), the exact decay over h of
 /// dv/dt = -gamma v. Acting on the fluctuating velocity only, it leaves the affine field of

@@ -29,6 +29,15 @@ double compressive_strain(const Simulation& simulation) {
   return -simulation.cell().engineering_strain()[0];
 }
 
+// A quasi-static run's strain as its schedule made it: the end of an increment (a multiple of the
+// increment, or a checkpoint strain), of which the cell's own strain is the rounding.
+double nominal_strain(const LoadConfig& load, double strain) {
+  for (const double checkpoint_strain : load.checkpoint_strains)
+    if (std::abs(strain - checkpoint_strain) <= 1e-9 * load.increment) return checkpoint_strain;
+  const double multiple = std::round(strain / load.increment) * load.increment;
+  return std::abs(strain - multiple) <= 1e-9 * load.increment ? multiple : strain;
+}
+
 io::HistoryRow history_row(const Simulation& simulation, const DemConfig& config) {
   const StateMeasures m = simulation.measure();
   const Vec3 strain = simulation.cell().engineering_strain();
@@ -135,6 +144,8 @@ public:
     return load_.increment > 0 && strain >= next_increment_;
   }
   void increment_relaxed(double strain) { next_increment_ = increment_end(strain); }
+  /// Where the increment under way ends.
+  [[nodiscard]] double next_increment() const { return next_increment_; }
   [[nodiscard]] bool history_due(double strain) const {
     return strain >= next_history_ || strain >= load_.final_strain;
   }
@@ -150,10 +161,13 @@ public:
   void checkpoint_written() { ++next_checkpoint_; }
 
 private:
+  // The next multiple k x increment above the strain (k an integer: a strain on a multiple, as a
+  // quasi-static run's is, goes on to the next one), or the next checkpoint strain if nearer.
   [[nodiscard]] double increment_end(double strain) const {
-    double end = next_multiple(strain, load_.increment);
+    double end = (std::floor(strain / load_.increment + 1e-9) + 1) * load_.increment;
     for (const double checkpoint_strain : load_.checkpoint_strains)
       if (checkpoint_strain > strain) end = std::min(end, checkpoint_strain);
+    if (load_.quasi_static) end = std::min(end, load_.final_strain); // no affine step past the end
     return end;
   }
 
@@ -172,6 +186,9 @@ public:
         logger_(logger), labels_{{}, run_id} {}
 
   void start_history(bool resuming);
+  // Athermal quasi-static loading: the strain to `end` in one affine step of the cell (axis 1 to
+  // its length there, axis 2 held, axis 3 servoed), then the minimisation of relax_increment.
+  void affine_increment(double end, Phase& loading);
   // OVAL's loading: each strain increment is followed by a relaxation to a small force
   // imbalance, so the path is a sequence of near-static states (docs/methods/dem.md).
   void relax_increment(double strain);
@@ -208,6 +225,17 @@ void LoadingRun::start_history(bool resuming) {
     history_.set_run_id(labels_.run_id);
     append_history_row();
   }
+}
+
+void LoadingRun::affine_increment(double end, Phase& loading) {
+  const model::CellControl loading_control = simulation_.control();
+  const PeriodicCell& cell = simulation_.cell();
+  model::CellControl jump = loading_control;
+  jump.target[0] = ((1.0 - end) * cell.reference_lengths()[0] / cell.lengths()[0] - 1.0) /
+                   simulation_.settings().time_step;
+  simulation_.set_control(jump);
+  loading.step();
+  simulation_.set_control(loading_control);
 }
 
 void LoadingRun::relax(const EquilibriumConfig& tolerances, const std::string& label) {
@@ -281,22 +309,34 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
   const std::int64_t start_step = simulation.step_count();
   LoadingRun run(simulation, config, output_dir, provenance, logger, run_id);
   run.start_history(resuming);
-  StrainSchedule schedule(load, compressive_strain(simulation));
+  // A quasi-static run's events follow its schedule's strains, which the cell's strain rounds.
+  const auto strain_now = [&] {
+    const double strain = compressive_strain(simulation);
+    return load.quasi_static ? nominal_strain(load, strain) : strain;
+  };
+  StrainSchedule schedule(load, strain_now());
   logger->info(
       "load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s",
       -simulation.control().target[0], load.inertial_number, compressive_strain(simulation),
       load.final_strain, simulation.settings().time_step);
   Progress progress(logger, "load", load.final_strain, 10.0, {}, compressive_strain(simulation));
   Phase loading(simulation, "load");
-  for (double strain = compressive_strain(simulation); strain < load.final_strain;
-       strain = compressive_strain(simulation)) {
-    loading.step();
-    strain = compressive_strain(simulation);
-    progress.update(strain);
-    if (schedule.increment_ends(strain)) {
-      run.relax_increment(strain);
-      schedule.increment_relaxed(strain);
+  for (double strain = strain_now(); strain < load.final_strain; strain = strain_now()) {
+    if (load.quasi_static) {
+      const double end = schedule.next_increment();
+      run.affine_increment(end, loading);
+      run.relax_increment(end);
+      schedule.increment_relaxed(end);
+      strain = end;
+    } else {
+      loading.step();
+      strain = compressive_strain(simulation);
+      if (schedule.increment_ends(strain)) {
+        run.relax_increment(strain);
+        schedule.increment_relaxed(strain);
+      }
     }
+    progress.update(strain);
     if (schedule.history_due(strain)) {
       run.append_history_row();
       schedule.history_written(strain);
@@ -305,7 +345,7 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
       run.write_checkpoint(schedule.checkpoint(), strain);
       schedule.checkpoint_written();
     }
-    if (simulation.at_control_update() && stop_requested(simulation.comm())) {
+    if ((load.quasi_static || simulation.at_control_update()) && stop_requested(simulation.comm())) {
       run.write_interrupted(strain);
       break;
     }

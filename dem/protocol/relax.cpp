@@ -2,11 +2,13 @@
 
 #include "common/error.hpp"
 #include "dem/model/cell_control.hpp"
+#include "dem/protocol/fire.hpp"
 #include "dem/protocol/phase.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 namespace aniso::dem::protocol {
 
@@ -39,6 +41,7 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   const model::CellControl held = model::strain_axes_held(loading);
   const model::CellControl fixed = model::fixed_cell(held);
   int left_equilibrium = 0; // verification windows that the state did not stay balanced through
+  std::int64_t verifying_steps = 0;
   phase.fail_beyond_budget([&] {
     return fmt::format(
         "{}: not in equilibrium after {} steps (dem.equilibrium.max_steps): unbalanced-force ratio "
@@ -65,12 +68,16 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   // (the demo's checkpoints: 1.00e-4 against 1e-4, again and again).
   const double margin = config.verify_steps > 0 ? kRelaxationMargin : 1.0;
   Progress progress(logger, label, -std::log10(margin * config.tolerance), 10.0);
+  const bool fire = config.method == Relaxer::fire;
   for (;;) {
-    with_damping(config.damping);
+    with_damping(fire ? 0.0 : config.damping);
+    std::optional<Fire> minimiser;
+    if (fire) minimiser.emplace(simulation, config.fire_time_step_factor);
     int passed = in_equilibrium(simulation, config, margin) ? 1 : 0;
     while (passed < required_checks) {
       phase.advance_to_update();
       passed = in_equilibrium(simulation, config, margin) ? passed + 1 : 0;
+      if (minimiser) minimiser->update();
       const double ratio = simulation.equilibrium().unbalanced_force_ratio;
       if (phase.steps() % 5000 == 0) trace(simulation, logger, label, phase.steps());
       progress.update(std::isfinite(ratio) && ratio > 0
@@ -81,6 +88,7 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
     // out of, or a creep that the servo would feed): it counts as static once, with the cell
     // fixed and the damping it will run with afterwards, it stays balanced and keeps its mean
     // stress for verify_steps.
+    if (minimiser) minimiser->end(); // the run's own time step again
     if (config.verify_steps == 0) break;
     simulation.set_control(fixed);
     with_damping(loading_damping);
@@ -96,6 +104,7 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
       stable = e.unbalanced_force_ratio < config.tolerance && e.unbalanced_torque_ratio < config.tolerance &&
                std::abs(drift) < config.stress_tolerance;
     }
+    verifying_steps += verified;
     if (stable) break;
     ++left_equilibrium;
     // Said, so that a progress that falls back from 100% is explained.
@@ -108,6 +117,8 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   }
   Relaxation result;
   result.steps = phase.steps();
+  result.verifying_steps = verifying_steps;
+  result.windows_left = left_equilibrium;
   result.seconds = phase.seconds();
   result.equilibrium = simulation.equilibrium();
   result.stress_error = std::abs(model::servo_error(loading, simulation.stress()));

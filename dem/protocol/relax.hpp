@@ -18,9 +18,11 @@ namespace aniso::dem::protocol {
 
 struct Relaxation {
   std::int64_t steps = 0;
-  double seconds = 0;      ///< wall time
-  Equilibrium equilibrium; ///< at the end
-  double stress_error = 0; ///< |servo error| at the end
+  std::int64_t verifying_steps = 0; ///< of `steps`, in the verification windows (passed or left)
+  int windows_left = 0;             ///< verification windows the state did not stay static through
+  double seconds = 0;               ///< wall time
+  Equilibrium equilibrium;          ///< at the end
+  double stress_error = 0;          ///< |servo error| at the end
 };
 
 /// The damped phase of a relaxation that is verified afterwards aims at this fraction of the

@@ -1,0 +1,47 @@
+#pragma once
+// FIRE, the fast inertial relaxation engine (Bitzek, Koskinen, Gaehler, Moseler & Gumbsch 2006,
+// Phys. Rev. Lett. 97, 170201), on the fluctuating translational and rotational motion of the
+// particles, with the parameters of its 2020 revision (Guenole et al., Comput. Mater. Sci. 175,
+// 109584). The assembly runs downhill undamped, its velocities turned a little toward the forces
+// at each step; as soon as the forces' power on the motion turns negative (it would climb), every
+// particle stops, the turning restarts strong and the time step shrinks. A damped relaxation
+// slows the soft modes of a marginal packing as much as the fast ones; FIRE lets them run.
+//
+// The forces stay those of the force pass (Hertz-Mindlin with its tangential history and the
+// Coulomb limit), and the cell keeps its control (held axes, servoed p), so a frictional packing
+// relaxes as the DEM would, only faster. Mass-weighted coordinates u = sqrt(M) v, f = F / sqrt(M)
+// put translations and rotations on one footing: P = F.v + T.omega, |u|^2 = 2 E_kin,
+// |f|^2 = F.F/m + T.I^-1 T (dem/equilibrium.hpp measures all three, exactly).
+
+#include "dem/simulation.hpp"
+
+#include <cstdint>
+
+namespace aniso::dem::protocol {
+
+class Fire {
+public:
+  /// FIRE over `simulation`, whose time step now is the smallest it takes; the largest is
+  /// `max_step_factor` times that, and below the Rayleigh step.
+  Fire(Simulation& simulation, double max_step_factor);
+
+  /// At a control update, with the equilibrium measured there: steers the velocities toward the
+  /// forces while the power is positive, else stops every particle (collective).
+  void update();
+  /// Gives the simulation its own time step back (collective).
+  void end() { set_time_step(min_step_); }
+  /// Times the particles were stopped.
+  [[nodiscard]] std::int64_t n_stops() const { return stops_; }
+
+private:
+  void set_time_step(double time_step);
+
+  Simulation& simulation_;
+  double min_step_;
+  double max_step_;
+  double alpha_;
+  int n_downhill_ = 0;
+  std::int64_t stops_ = 0;
+};
+
+} // namespace aniso::dem::protocol
