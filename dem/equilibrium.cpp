@@ -1,7 +1,6 @@
 #include "dem/equilibrium.hpp"
 
 #include "common/exact_sum.hpp"
-#include "dem/model/integrator.hpp"
 #include "dem/model/rotation.hpp"
 
 #include <array>
@@ -27,8 +26,6 @@ Equilibrium measure_equilibrium(const data::Particles& particles, const data::Ne
     stiffness,
     kinetic,
     elastic,
-    power,
-    force_norm,
     count
   };
   std::array<ExactSum, count> sums;
@@ -56,11 +53,6 @@ Equilibrium measure_equilibrium(const data::Particles& particles, const data::Ne
     sums[kinetic].add(0.5 * particles.mass[k] * particles.velocity[k].squaredNorm());
     sums[kinetic].add(model::rotational_energy(particles.inertia[k], particles.orientation[k],
                                                particles.angular_velocity[k]));
-    const Vec3& force = particles.force[k];
-    const Vec3& torque = particles.torque[k];
-    sums[power].add(force.dot(particles.velocity[k]) + torque.dot(particles.angular_velocity[k]));
-    sums[force_norm].add(force.squaredNorm() / particles.mass[k] +
-                         torque.dot(model::inverse_inertia_world_times(particles, k, torque)));
     if (touching[k] == 0) continue;
     sums[net_force].add(particles.force[k].norm());
     sums[net_torque].add(particles.torque[k].norm());
@@ -73,8 +65,6 @@ Equilibrium measure_equilibrium(const data::Particles& particles, const data::Ne
   e.n_contacts = static_cast<std::int64_t>(value(contacts));
   e.kinetic_energy = value(kinetic);
   e.elastic_energy = value(elastic);
-  e.power = value(power);
-  e.force_norm_squared = value(force_norm);
   if (e.n_contacts == 0) {
     e.unbalanced_force_ratio = std::numeric_limits<double>::quiet_NaN();
     e.unbalanced_torque_ratio = e.unbalanced_force_ratio;

@@ -25,12 +25,6 @@ struct Equilibrium {
   double kinetic_energy = 0;        ///< fluctuating translation plus rotation [J]
   double elastic_energy = 0;        ///< Hertz normal plus Mindlin tangential springs [J]
   double mean_normal_stiffness = 0; ///< mean dF_n/d delta = 3 F_n / (2 delta) over contacts [N/m]
-  /// Power of the forces and torques on the fluctuating motion, sum F.v + T.omega [W]: > 0
-  /// while the assembly runs downhill (the minimiser's test, protocol/fire.hpp).
-  double power = 0;
-  /// The forces' norm in mass-weighted coordinates, sum F.F/m + T.I^-1 T [N^2/kg], which with
-  /// the kinetic energy (|u|^2 = 2 E_kin) steers the velocities toward the forces.
-  double force_norm_squared = 0;
   std::int64_t n_contacts = 0;
 
   /// Kinetic over elastic energy; NaN without elastic energy.

@@ -406,6 +406,12 @@ const std::vector<Parameter>& parameters() {
        .range = Range::closed(0, 1e9),
        .help = "time steps the tolerances must then keep holding with the damping of the run (an unstable "
                "balance fails this and relaxes on)"},
+      {.key = "dem.equilibrium.margin",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::margin>,
+       .unit = units::none,
+       .range = Range::open_closed(0.0, 1.0),
+       .help = "a relaxation that is verified afterwards first reaches this fraction of the tolerances (a "
+               "state that only just met them left them at the first fluctuation of the window)"},
       {.key = "dem.equilibrium.max_steps",
        .config = &member<&D::equilibrium, &EquilibriumConfig::max_steps>,
        .range = Range::closed(1, 1e10),

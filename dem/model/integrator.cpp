@@ -29,6 +29,22 @@ void kick(data::Particles& particles, double dt) {
   }
 }
 
+MotionSums motion_sums(const data::Particles& particles) {
+  MotionSums sums;
+  for (std::size_t k = 0; k < particles.n_owned; ++k) {
+    const Vec3& force = particles.force[k];
+    const Vec3& torque = particles.torque[k];
+    const Vec3& velocity = particles.velocity[k];
+    const Vec3& spin = particles.angular_velocity[k];
+    sums.power.add(force.dot(velocity) + torque.dot(spin));
+    sums.speed_squared.add(particles.mass[k] * velocity.squaredNorm() +
+                           2.0 * rotational_energy(particles.inertia[k], particles.orientation[k], spin));
+    sums.force_squared.add(force.squaredNorm() / particles.mass[k] +
+                           torque.dot(inverse_inertia_world_times(particles, k, torque)));
+  }
+  return sums;
+}
+
 void steer_velocities(data::Particles& particles, double keep, double toward) {
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     particles.velocity[k] = keep * particles.velocity[k] + (toward / particles.mass[k]) * particles.force[k];

@@ -3,6 +3,7 @@
 // the Rayleigh time-step criterion checked before a run starts.
 
 #include "common/cell.hpp"
+#include "common/exact_sum.hpp"
 #include "dem/data/particles.hpp"
 #include "dem/model/contact_law.hpp"
 
@@ -14,6 +15,14 @@ void kick(data::Particles& particles, double dt);
 
 /// I_world^-1 v of particle k: v / I for a sphere, the axisymmetric inverse for an ovoid.
 Vec3 inverse_inertia_world_times(const data::Particles& particles, std::size_t k, const Vec3& v);
+
+/// This rank's sums for the minimiser (protocol/fire.hpp), over its owned particles, in
+/// mass-weighted coordinates u = sqrt(M) v, f = F / sqrt(M): the power F.v + T.omega [W], |u|^2 =
+/// m v.v + omega.I omega [J] and |f|^2 = F.F / m + T.I^-1 T [N^2/kg], each exact.
+struct MotionSums {
+  ExactSum power, speed_squared, force_squared;
+};
+MotionSums motion_sums(const data::Particles& particles);
 
 /// The minimiser's steering (protocol/fire.hpp): every owned particle's fluctuating velocity
 /// becomes keep v + toward F/m and its angular velocity keep omega + toward I^-1 T.

@@ -3,13 +3,16 @@
 #include "dem/model/integrator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
+#include <vector>
 
 namespace aniso::dem::protocol {
 namespace {
 
 // Guenole et al. 2020, Table 1: N_delay, f_inc, f_dec, alpha_start, f_alpha.
-constexpr int delay = 5;
+constexpr int delay = 20;
 constexpr double grow = 1.1;
 constexpr double shrink = 0.5;
 constexpr double alpha_start = 0.25;
@@ -30,10 +33,12 @@ void Fire::set_time_step(double time_step) {
 }
 
 void Fire::update() {
-  const Equilibrium& e = simulation_.equilibrium();
-  if (e.power > 0) {
-    const double speed = std::sqrt(2.0 * e.kinetic_energy);
-    const double force = std::sqrt(e.force_norm_squared);
+  const model::MotionSums local = model::motion_sums(simulation_.particles());
+  const std::array<ExactSum, 3> terms{local.power, local.speed_squared, local.force_squared};
+  const std::vector<ExactSum> sums = simulation_.comm().sum_exact(std::span<const ExactSum>(terms));
+  if (sums[0].value() > 0) {
+    const double speed = std::sqrt(sums[1].value());
+    const double force = std::sqrt(sums[2].value());
     if (force > 0) model::steer_velocities(simulation_.particles(), 1.0 - alpha_, alpha_ * speed / force);
     if (++n_downhill_ > delay) {
       set_time_step(std::min(simulation_.settings().time_step * grow, max_step_));

@@ -11,7 +11,9 @@
 // Coulomb limit), and the cell keeps its control (held axes, servoed p), so a frictional packing
 // relaxes as the DEM would, only faster. Mass-weighted coordinates u = sqrt(M) v, f = F / sqrt(M)
 // put translations and rotations on one footing: P = F.v + T.omega, |u|^2 = 2 E_kin,
-// |f|^2 = F.F/m + T.I^-1 T (dem/equilibrium.hpp measures all three, exactly).
+// |f|^2 = F.F/m + T.I^-1 T, summed exactly at every step (model::motion_sums): checked only at
+// the control updates, every few steps, the fastest modes (a sphere's spin on its tangential
+// springs) turned around between checks and every check found the power negative.
 
 #include "dem/simulation.hpp"
 
@@ -25,8 +27,8 @@ public:
   /// `max_step_factor` times that, and below the Rayleigh step.
   Fire(Simulation& simulation, double max_step_factor);
 
-  /// At a control update, with the equilibrium measured there: steers the velocities toward the
-  /// forces while the power is positive, else stops every particle (collective).
+  /// After every time step: steers the velocities toward the forces while the power is positive,
+  /// else stops every particle (collective: one exact reduction of three sums).
   void update();
   /// Gives the simulation its own time step back (collective).
   void end() { set_time_step(min_step_); }

@@ -25,11 +25,12 @@ void Phase::step() {
   ++steps_;
 }
 
-void Phase::advance_to_update() {
+void Phase::advance_to_update(const std::function<void()>& after_each_step) {
   do {
     if (!may_step()) return;
     simulation_.step();
     ++steps_;
+    if (after_each_step) after_each_step();
   } while (!simulation_.at_control_update());
 }
 

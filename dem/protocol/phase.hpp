@@ -41,8 +41,9 @@ public:
   void fail_beyond_budget(std::function<std::string()> message) { failure_ = std::move(message); }
   /// One time step.
   void step();
-  /// Steps until a step ends with a control update (stress and servo fresh), or the budget ends.
-  void advance_to_update();
+  /// Steps until a step ends with a control update (stress and servo fresh), or the budget ends;
+  /// `after_each_step` (if any) runs after every step (a minimiser's turn of the velocities).
+  void advance_to_update(const std::function<void()>& after_each_step = {});
   /// `n` steps, or until the budget ends.
   void advance(std::int64_t n);
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <functional>
 #include <optional>
 
 namespace aniso::dem::protocol {
@@ -66,7 +67,7 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   // A state verified afterwards is first relaxed to half the tolerances: one that only just met
   // them left them within a few hundred steps of the undamped window, at the first fluctuation
   // (the demo's checkpoints: 1.00e-4 against 1e-4, again and again).
-  const double margin = config.verify_steps > 0 ? kRelaxationMargin : 1.0;
+  const double margin = config.verify_steps > 0 ? config.margin : 1.0;
   Progress progress(logger, label, -std::log10(margin * config.tolerance), 10.0);
   const bool fire = config.method == Relaxer::fire;
   for (;;) {
@@ -74,10 +75,10 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
     std::optional<Fire> minimiser;
     if (fire) minimiser.emplace(simulation, config.fire_time_step_factor);
     int passed = in_equilibrium(simulation, config, margin) ? 1 : 0;
+    const std::function<void()> turn = [&] { minimiser->update(); };
     while (passed < required_checks) {
-      phase.advance_to_update();
+      phase.advance_to_update(minimiser ? turn : std::function<void()>{});
       passed = in_equilibrium(simulation, config, margin) ? passed + 1 : 0;
-      if (minimiser) minimiser->update();
       const double ratio = simulation.equilibrium().unbalanced_force_ratio;
       if (phase.steps() % 5000 == 0) trace(simulation, logger, label, phase.steps());
       progress.update(std::isfinite(ratio) && ratio > 0

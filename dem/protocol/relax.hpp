@@ -25,10 +25,6 @@ struct Relaxation {
   double stress_error = 0;          ///< |servo error| at the end
 };
 
-/// The damped phase of a relaxation that is verified afterwards aims at this fraction of the
-/// tolerances, so that the undamped verification window does not fail on the first fluctuation.
-inline constexpr double kRelaxationMargin = 0.5;
-
 /// True when the last control update meets `margin` times the tolerances: force and torque ratios
 /// below margin x config.tolerance, |servo error| below margin x config.stress_tolerance.
 bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& config, double margin = 1.0);
