@@ -1,0 +1,144 @@
+#!/usr/bin/python3
+"""Convergence of athermal quasi-static loading (docs/charts/dem_quasi_static.png, .csv).
+
+Loads each prepared assembly (one per realisation) to FINAL_STRAIN in the quasi-static mode
+(dem.load.quasi_static: each strain increment one affine step of the cell, then the FIRE
+minimiser to an unbalanced-force ratio below dem.load.increment_tolerance) for three increments
+over a decade (1e-4, 3e-5, 1e-5) and two tolerances (1e-3, 1e-4), and continuously at
+I = 1e-3, 1e-4 and 1e-5 (the slow physical limit). It draws (sigma11 - sigma33)/p,
+(sigma22 - sigma33)/p and the volumetric strain against the axial strain, each the mean over the
+realisations, and compares every setting with the next finer one. Rule for the defaults: the
+coarsest setting whose (sigma11 - sigma33)/p agrees within 2% (mean over the strain, relative)
+and whose volumetric strain agrees within 0.1% (absolute, largest difference) with the next finer
+setting. Finished runs in the work folder are reused; JOBS runs go side by side.
+
+usage: chart_dem_quasi_static.py ANISO_DEM WORK OUTPUT FINAL_STRAIN JOBS PREPARED.h5...
+"""
+import concurrent.futures
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from load_convergence import COMPARE_FROM, cached_load  # noqa: E402
+
+INCREMENTS = [1e-4, 3e-5, 1e-5]
+TOLERANCES = [1e-3, 1e-4]
+RATES = [1e-3, 1e-4, 1e-5]
+QUASI_STATIC = ["dem.load.quasi_static=true", "dem.equilibrium.method=fire", "dem.equilibrium.at_checkpoints=false",
+                "dem.load.checkpoint_strains=[]"]
+CONTINUOUS = ["dem.load.increment=0", "dem.equilibrium.at_checkpoints=false", "dem.load.checkpoint_strains=[]"]
+
+
+def settings():
+    """(label, key, aniso-dem settings) of every run kind, quasi-static first."""
+    runs = [(f"quasi-static, increment {d:g}, tolerance {t:g}", ("qs", d, t),
+             QUASI_STATIC + [f"dem.load.increment={d}", f"dem.load.increment_tolerance={t}"])
+            for t in TOLERANCES for d in INCREMENTS]
+    runs += [(f"continuous, I = {i:g}", ("rate", i), CONTINUOUS + [f"dem.load.inertial_number={i}"]) for i in RATES]
+    return runs
+
+
+def folder_of(work, key, realisation):
+    name = f"qs_d{key[1]:g}_t{key[2]:g}" if key[0] == "qs" else f"rate_I{key[1]:g}"
+    return f"{work}/{name}_r{realisation}"
+
+
+def ratios(h):
+    """Axial strain (compression positive), (s11 - s33)/p, (s22 - s33)/p (compression-positive
+    stresses) and the volumetric strain (dilation positive)."""
+    p = h["p"]
+    return (-h["strain_11"], (h["stress_33"] - h["stress_11"]) / p, (h["stress_33"] - h["stress_22"]) / p,
+            h["volumetric_strain"])
+
+
+def on_grid(h, grid):
+    strain, r13, r23, volume = ratios(h)
+    return np.interp(grid, strain, r13), np.interp(grid, strain, r23), np.interp(grid, strain, volume)
+
+
+def steps_of(folder):
+    for line in open(f"{folder}/log.txt"):
+        if "load done:" in line:
+            return int(line.split(" in ")[1].split(" steps")[0])
+    return 0
+
+
+def main(binary, work, out, final_strain, jobs, prepared):
+    grid = np.linspace(0, final_strain, 201)
+    kinds = settings()
+    tasks = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        for label, key, options in kinds:
+            for r, path in enumerate(prepared):
+                tasks[(key, r)] = pool.submit(cached_load, binary, path, folder_of(work, key, r), options, final_strain)
+    curves, costs = {}, {}
+    for label, key, _ in kinds:
+        runs = [tasks[(key, r)].result() for r in range(len(prepared))]
+        curves[key] = np.array([on_grid(h, grid) for h, _ in runs])  # realisation, quantity, strain
+        costs[key] = (np.mean([wall for _, wall in runs]),
+                      np.mean([steps_of(folder_of(work, key, r)) for r in range(len(prepared))]))
+
+    fig, axes = plt.subplots(1, 3, figsize=(17, 5))
+    for label, key, _ in kinds:
+        mean = curves[key].mean(axis=0)
+        style = "-" if key[0] == "qs" and key[2] == TOLERANCES[-1] else ("--" if key[0] == "qs" else ":")
+        for q in range(3):
+            axes[q].plot(100 * grid, mean[q] * (100 if q == 2 else 1), style, lw=1.2, label=label)
+    titles = [r"$(\sigma_{11} - \sigma_{33})/p$", r"$(\sigma_{22} - \sigma_{33})/p$",
+              r"volumetric strain $\varepsilon_v$ (%), dilation positive"]
+    for ax, title in zip(axes, titles):
+        ax.set_xlabel(r"axial strain $-\varepsilon_{11}$ (%)")
+        ax.set_title(title)
+        ax.grid(alpha=0.3)
+    axes[2].legend(fontsize=6)
+    fig.suptitle(f"Quasi-static loading against its increment and tolerance, and continuous loading: "
+                 f"mean of {len(prepared)} realisations")
+    fig.tight_layout()
+    fig.savefig(f"{out}/dem_quasi_static.png", dpi=110)
+
+    keep = grid >= COMPARE_FROM
+    rows = []
+
+    def compare(coarse, fine, what):
+        # Per realisation: the mean relative difference of (s11 - s33)/p past COMPARE_FROM, and the largest
+        # absolute difference of the volumetric strain; then the mean over the realisations.
+        a, b = curves[coarse], curves[fine]
+        q13 = np.mean([abs(a[r, 0, keep].mean() - b[r, 0, keep].mean()) / b[r, 0, keep].mean() for r in range(len(a))])
+        q23 = np.mean([abs(a[r, 1, keep].mean() - b[r, 1, keep].mean()) for r in range(len(a))])
+        dv = np.mean([np.max(np.abs(a[r, 2, keep] - b[r, 2, keep])) for r in range(len(a))])
+        rows.append({"comparison": what, "ratio13_mean_rel": f"{q13:.4f}", "ratio23_mean_abs": f"{q23:.4f}",
+                     "volumetric_max_abs": f"{dv:.5f}", "within_rule": int(q13 <= 0.02 and dv <= 0.001),
+                     "coarse_wall_s": f"{costs[coarse][0]:.1f}", "coarse_steps": f"{costs[coarse][1]:.0f}"})
+
+    for t in TOLERANCES:
+        for coarse, fine in zip(INCREMENTS[:-1], INCREMENTS[1:]):
+            compare(("qs", coarse, t), ("qs", fine, t), f"increment {coarse:g} vs {fine:g}, tolerance {t:g}")
+    for d in INCREMENTS:
+        compare(("qs", d, TOLERANCES[0]), ("qs", d, TOLERANCES[1]), f"tolerance {TOLERANCES[0]:g} vs "
+                f"{TOLERANCES[1]:g}, increment {d:g}")
+    for coarse, fine in zip(RATES[:-1], RATES[1:]):
+        compare(("rate", coarse), ("rate", fine), f"continuous I = {coarse:g} vs {fine:g}")
+    compare(("qs", INCREMENTS[-1], TOLERANCES[-1]), ("rate", RATES[-1]),
+            f"quasi-static {INCREMENTS[-1]:g}/{TOLERANCES[-1]:g} vs continuous I = {RATES[-1]:g}")
+    with open(f"{out}/dem_quasi_static.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    with open(f"{out}/dem_quasi_static_costs.csv", "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(["setting", "wall_s", "steps"])
+        for label, key, _ in kinds:
+            writer.writerow([label, f"{costs[key][0]:.1f}", f"{costs[key][1]:.0f}"])
+    for row in rows:
+        print(row)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 7:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), int(sys.argv[5]), sys.argv[6:])
