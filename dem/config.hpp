@@ -83,11 +83,11 @@ enum class Relaxer : std::uint8_t {
 struct EquilibriumConfig {
   double tolerance = 1e-4;           ///< unbalanced-force ratio at which a state counts as static
   double stress_tolerance = 1e-3;    ///< |p - p_target| / p_target at the same time
-  Relaxer method = Relaxer::damped;  ///< how the relaxations reach it
+  Relaxer method = Relaxer::fire;    ///< how the relaxations reach it
   double damping = 0.1;              ///< global damping ratio while relaxing (Relaxer::damped)
   double fire_time_step_factor = 1;  ///< largest FIRE time step, in the run's steps
   std::int64_t verify_steps = 20000; ///< the tolerances must then hold this long without extra damping
-  double margin = 0.5;               ///< a verified relaxation first reaches this fraction of the tolerances
+  double margin = 0.1;               ///< a verified relaxation first reaches this fraction of the tolerances
   std::int64_t max_steps = 500000;   ///< a relaxation that needs more stops with exit 5
   bool at_checkpoints = true;        ///< relax before writing each load checkpoint
 };

@@ -233,9 +233,18 @@ void LoadingRun::affine_increment(double end, Phase& loading) {
   model::CellControl jump = loading_control;
   jump.target[0] = ((1.0 - end) * cell.reference_lengths()[0] / cell.lengths()[0] - 1.0) /
                    simulation_.settings().time_step;
+  // The step is an affine map, not a motion: contact damping would read the jump's rate
+  // (increment / time step) on every branch vector as a relative velocity and kick each
+  // particle with an impulse that grows with the increment (the whole increment's viscous
+  // impulse in one step), so it is off for this step.
+  const SimulationSettings settings = simulation_.settings();
+  SimulationSettings undamped = settings;
+  undamped.material.damping_ratio = 0.0;
+  simulation_.reconfigure(undamped);
   simulation_.set_control(jump);
   loading.step();
   simulation_.set_control(loading_control);
+  simulation_.reconfigure(settings);
 }
 
 void LoadingRun::relax(const EquilibriumConfig& tolerances, const std::string& label) {
