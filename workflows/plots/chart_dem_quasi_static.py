@@ -10,12 +10,15 @@ I = 1e-3, 1e-4 and 1e-5 (the slow physical limit). It draws (sigma11 - sigma33)/
 realisations, and compares every setting with the next finer one. Rule for the defaults: the
 coarsest setting whose (sigma11 - sigma33)/p agrees within 2% (mean over the strain, relative)
 and whose volumetric strain agrees within 0.1% (absolute, largest difference) with the next finer
-setting. Finished runs in the work folder are reused; JOBS runs go side by side.
+setting. Finished runs in the work folder are reused; JOBS runs go side by side. With
+QS_FINISHED_ONLY=1 nothing runs: the chart draws the finished runs and compares settings on the
+realisations both finished (the legend names a setting with fewer).
 
 usage: chart_dem_quasi_static.py ANISO_DEM WORK OUTPUT FINAL_STRAIN JOBS PREPARED.h5...
 """
 import concurrent.futures
 import csv
+import os
 import sys
 
 import matplotlib
@@ -24,6 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from history_io import read_history  # noqa: E402
 from load_convergence import COMPARE_FROM, cached_load  # noqa: E402
 
 INCREMENTS = [1e-4, 3e-5, 1e-5]
@@ -68,24 +72,45 @@ def steps_of(folder):
     return 0
 
 
+def finished(work, key, realisation, final_strain):
+    """(history, wall seconds) of a finished run, else None."""
+    folder = folder_of(work, key, realisation)
+    try:
+        h = read_history(f"{folder}/history.h5")
+        if abs(-h["strain_11"][-1] - final_strain) < 1e-3 * final_strain and os.path.exists(f"{folder}/wall.txt"):
+            return h, float(open(f"{folder}/wall.txt").read())
+    except (OSError, KeyError):
+        pass
+    return None
+
+
 def main(binary, work, out, final_strain, jobs, prepared):
     grid = np.linspace(0, final_strain, 201)
     kinds = settings()
-    tasks = {}
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        for label, key, options in kinds:
-            for r, path in enumerate(prepared):
-                tasks[(key, r)] = pool.submit(cached_load, binary, path, folder_of(work, key, r), options, final_strain)
-    curves, costs = {}, {}
+    runs = {}
+    if os.environ.get("QS_FINISHED_ONLY") == "1":
+        # A partial study: only the runs already finished, compared on the realisations both have.
+        for _, key, _ in kinds:
+            for r in range(len(prepared)):
+                if (run := finished(work, key, r, final_strain)) is not None:
+                    runs[(key, r)] = run
+    else:
+        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+            tasks = {(key, r): pool.submit(cached_load, binary, path, folder_of(work, key, r), options, final_strain)
+                     for _, key, options in kinds for r, path in enumerate(prepared)}
+        runs = {k: t.result() for k, t in tasks.items()}
+    kinds = [k for k in kinds if any((k[1], r) in runs for r in range(len(prepared)))]
+    curves, costs, have = {}, {}, {}
     for label, key, _ in kinds:
-        runs = [tasks[(key, r)].result() for r in range(len(prepared))]
-        curves[key] = np.array([on_grid(h, grid) for h, _ in runs])  # realisation, quantity, strain
-        costs[key] = (np.mean([wall for _, wall in runs]),
-                      np.mean([steps_of(folder_of(work, key, r)) for r in range(len(prepared))]))
+        have[key] = [r for r in range(len(prepared)) if (key, r) in runs]
+        curves[key] = {r: np.array(on_grid(runs[(key, r)][0], grid)) for r in have[key]}  # quantity, strain
+        costs[key] = (np.mean([runs[(key, r)][1] for r in have[key]]),
+                      np.mean([steps_of(folder_of(work, key, r)) for r in have[key]]))
 
     fig, axes = plt.subplots(1, 3, figsize=(17, 5))
     for label, key, _ in kinds:
-        mean = curves[key].mean(axis=0)
+        mean = np.mean([curves[key][r] for r in have[key]], axis=0)
+        label = f"{label} ({len(have[key])} realisations)" if len(have[key]) < len(prepared) else label
         style = "-" if key[0] == "qs" and key[2] == TOLERANCES[-1] else ("--" if key[0] == "qs" else ":")
         for q in range(3):
             axes[q].plot(100 * grid, mean[q] * (100 if q == 2 else 1), style, lw=1.2, label=label)
@@ -105,13 +130,22 @@ def main(binary, work, out, final_strain, jobs, prepared):
     rows = []
 
     def compare(coarse, fine, what):
-        # Per realisation: the mean relative difference of (s11 - s33)/p past COMPARE_FROM, and the largest
-        # absolute difference of the volumetric strain; then the mean over the realisations.
+        # Per realisation both ran: the mean relative difference of (s11 - s33)/p past COMPARE_FROM,
+        # the mean difference of (s22 - s33)/p, the largest absolute difference of the volumetric
+        # strain; then the mean over those realisations.
+        if coarse not in curves or fine not in curves:
+            return
+        shared = [r for r in have[coarse] if r in have[fine]]
+        if not shared:
+            return
         a, b = curves[coarse], curves[fine]
-        q13 = np.mean([abs(a[r, 0, keep].mean() - b[r, 0, keep].mean()) / b[r, 0, keep].mean() for r in range(len(a))])
-        q23 = np.mean([abs(a[r, 1, keep].mean() - b[r, 1, keep].mean()) for r in range(len(a))])
-        dv = np.mean([np.max(np.abs(a[r, 2, keep] - b[r, 2, keep])) for r in range(len(a))])
-        rows.append({"comparison": what, "ratio13_mean_rel": f"{q13:.4f}", "ratio23_mean_abs": f"{q23:.4f}",
+        q13 = np.mean([abs(a[r][0, keep].mean() - b[r][0, keep].mean()) / b[r][0, keep].mean() for r in shared])
+        q23 = np.mean([abs(a[r][1, keep].mean() - b[r][1, keep].mean()) for r in shared])
+        dv = np.mean([np.max(np.abs(a[r][2, keep] - b[r][2, keep])) for r in shared])
+        rows.append({"comparison": what, "realisations": len(shared),
+                     "ratio13_coarse": f"{np.mean([a[r][0, keep].mean() for r in shared]):.4f}",
+                     "ratio13_fine": f"{np.mean([b[r][0, keep].mean() for r in shared]):.4f}",
+                     "ratio13_mean_rel": f"{q13:.4f}", "ratio23_mean_abs": f"{q23:.4f}",
                      "volumetric_max_abs": f"{dv:.5f}", "within_rule": int(q13 <= 0.02 and dv <= 0.001),
                      "coarse_wall_s": f"{costs[coarse][0]:.1f}", "coarse_steps": f"{costs[coarse][1]:.0f}"})
 
@@ -123,8 +157,10 @@ def main(binary, work, out, final_strain, jobs, prepared):
                 f"{TOLERANCES[1]:g}, increment {d:g}")
     for coarse, fine in zip(RATES[:-1], RATES[1:]):
         compare(("rate", coarse), ("rate", fine), f"continuous I = {coarse:g} vs {fine:g}")
-    compare(("qs", INCREMENTS[-1], TOLERANCES[-1]), ("rate", RATES[-1]),
-            f"quasi-static {INCREMENTS[-1]:g}/{TOLERANCES[-1]:g} vs continuous I = {RATES[-1]:g}")
+    slowest = [key for _, key, _ in kinds if key[0] == "rate"][-1:]
+    for _, key, _ in kinds:
+        if key[0] == "qs" and slowest:
+            compare(key, slowest[0], f"quasi-static {key[1]:g}/{key[2]:g} vs continuous I = {slowest[0][1]:g}")
     with open(f"{out}/dem_quasi_static.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
