@@ -2,7 +2,8 @@
 // (dem/protocol/relax.hpp), on hand-made assemblies whose static state is known: a
 // frictionless compressed lattice of spheres, and of ovoids with parallel axes, displaced and
 // set moving at random must come back to the lattice (the one state where every force balances);
-// a chain of spheres, where each sphere touches two; and a frictional lattice, which must end
+// a chain of spheres, where each sphere touches two, and a stack of ovoids pressed cap to cap;
+// and a frictional lattice, which must end
 // balanced and stay so. A relaxation that cannot converge within its budget stops with
 // ConvergenceError naming the ratio it reached.
 #include "common/error.hpp"
@@ -190,6 +191,43 @@ TEST(Minimiser, ChainOfTouchingSpheresComesToEqualSpacing) {
         PeriodicCell::minimum_image_of_wrapped(x[(k + 1) % 4] - x[k], simulation.cell().lengths())[0];
     EXPECT_NEAR(gap, spacing, 1e-8 * overlap) << "pair " << k;
   }
+}
+
+// Eight alpha = 0.5 ovoids stacked along x1 on their axes, each pressing its two neighbours cap
+// to cap. One pushed along the stack must come back to equal spacing, every axis still along x1.
+// (A turned one is no test: the compressed column buckles sideways, as a chain of spheres
+// would, and falls apart.)
+TEST(Minimiser, StackOfOvoidsComesBackToItsAlignedEqualSpacing) {
+  constexpr int n = 8;
+  constexpr double aspect = 0.5;
+  DemConfig config = test::small_config(n);
+  config.particles.aspect_ratio = aspect;
+  config.material.friction = 0.0;
+  const double overlap = 2e-3 * radius, spacing = 2 * aspect * radius - overlap;
+  const Quat axis_along_x1(Eigen::AngleAxisd(std::acos(-1.0) / 2, Vec3::UnitY()));
+  data::Particles particles;
+  for (int k = 0; k < n; ++k) {
+    particles.add(static_cast<std::uint64_t>(k), radius, aspect, config.particles.splice_angle,
+                  config.particles.density,
+                  Vec3((k + 0.5) * spacing + (k == 2 ? 0.3 * overlap : 0.0), 0.5e-3, 0.5e-3), axis_along_x1);
+  }
+  SimulationSettings settings = io::settings_from_config(config, 2 * radius);
+  settings.material.damping_ratio = 0.0;
+  Simulation simulation(std::move(particles), PeriodicCell(Vec3(n * spacing, 1e-3, 1e-3)),
+                        model::CellControl{}, settings, mpi::Comm(MPI_COMM_SELF));
+  ASSERT_EQ(simulation.equilibrium().n_contacts, n);
+  const protocol::Relaxation relaxed = protocol::relax_to_equilibrium(simulation, fire_tolerances(1e-10),
+                                                                      200000, make_silent_logger(), "test");
+  const data::Particles& p = simulation.particles();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const std::size_t next = (k + 1) % p.size();
+    const double gap = PeriodicCell::minimum_image_of_wrapped(p.position[next] - p.position[k],
+                                                              simulation.cell().lengths())[0];
+    EXPECT_NEAR(gap, spacing, 1e-6 * overlap) << "pair " << k;
+    const Vec3 axis = p.orientation[k] * Vec3::UnitZ();
+    EXPECT_GT(std::abs(axis[0]), 1.0 - 1e-10) << "ovoid " << p.id[k] << " axis " << axis.transpose();
+  }
+  std::printf("ovoid stack: static again in %lld steps\n", static_cast<long long>(relaxed.steps));
 }
 
 // With friction the static state is not unique, but it must be balanced and stay balanced and
