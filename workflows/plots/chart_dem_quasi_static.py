@@ -167,9 +167,12 @@ def main(binary, work, out, final_strain, jobs, prepared):
         writer.writerows(rows)
     with open(f"{out}/dem_quasi_static_costs.csv", "w", newline="") as f:
         writer = csv.writer(f)
-        writer.writerow(["setting", "wall_s", "steps"])
+        writer.writerow(["setting", "realisations", "wall_s", "steps", "ratio13_mean", "ratio23_mean",
+                         "volumetric_final"])
         for label, key, _ in kinds:
-            writer.writerow([label, f"{costs[key][0]:.1f}", f"{costs[key][1]:.0f}"])
+            mean = np.mean([curves[key][r] for r in have[key]], axis=0)
+            writer.writerow([label, len(have[key]), f"{costs[key][0]:.1f}", f"{costs[key][1]:.0f}",
+                             f"{mean[0, keep].mean():.4f}", f"{mean[1, keep].mean():.4f}", f"{mean[2, -1]:.5f}"])
     for row in rows:
         print(row)
 
