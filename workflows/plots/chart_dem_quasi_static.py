@@ -27,8 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from history_io import read_history  # noqa: E402
-from load_convergence import COMPARE_FROM, cached_load  # noqa: E402
+from load_convergence import COMPARE_FROM, cached_load, finished_load  # noqa: E402
 
 INCREMENTS = [1e-4, 3e-5, 1e-5]
 TOLERANCES = [1e-3, 1e-4]
@@ -72,18 +71,6 @@ def steps_of(folder):
     return 0
 
 
-def finished(work, key, realisation, final_strain):
-    """(history, wall seconds) of a finished run, else None."""
-    folder = folder_of(work, key, realisation)
-    try:
-        h = read_history(f"{folder}/history.h5")
-        if abs(-h["strain_11"][-1] - final_strain) < 1e-3 * final_strain and os.path.exists(f"{folder}/wall.txt"):
-            return h, float(open(f"{folder}/wall.txt").read())
-    except (OSError, KeyError):
-        pass
-    return None
-
-
 def main(binary, work, out, final_strain, jobs, prepared):
     grid = np.linspace(0, final_strain, 201)
     kinds = settings()
@@ -92,7 +79,7 @@ def main(binary, work, out, final_strain, jobs, prepared):
         # A partial study: only the runs already finished, compared on the realisations both have.
         for _, key, _ in kinds:
             for r in range(len(prepared)):
-                if (run := finished(work, key, r, final_strain)) is not None:
+                if (run := finished_load(folder_of(work, key, r), final_strain)) is not None:
                     runs[(key, r)] = run
     else:
         with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:

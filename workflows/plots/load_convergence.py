@@ -12,16 +12,23 @@ from history_io import read_history
 COMPARE_FROM = 0.005
 
 
-def cached_load(binary, prepared, folder, settings, final_strain):
-    """Runs `aniso-dem load` with `settings` (key=value strings) into `folder`, to `final_strain`, unless a
-    finished run is there already (so an interrupted chart continues). Returns (history, wall seconds)."""
-    os.makedirs(folder, exist_ok=True)
+def finished_load(folder, final_strain):
+    """(history, wall seconds) of a load in `folder` that reached `final_strain`, else None."""
     try:
         h = read_history(f"{folder}/history.h5")
         if abs(-h["strain_11"][-1] - final_strain) < 1e-3 * final_strain and os.path.exists(f"{folder}/wall.txt"):
             return h, float(open(f"{folder}/wall.txt").read())
     except (OSError, KeyError):
         pass
+    return None
+
+
+def cached_load(binary, prepared, folder, settings, final_strain):
+    """Runs `aniso-dem load` with `settings` (key=value strings) into `folder`, to `final_strain`, unless a
+    finished run is there already (so an interrupted chart continues). Returns (history, wall seconds)."""
+    os.makedirs(folder, exist_ok=True)
+    if (done := finished_load(folder, final_strain)) is not None:
+        return done
     command = [binary, "load", "--input", prepared, "--set", f"dem.output_dir={folder}",
                "--set", f"dem.load.final_strain={final_strain}",
                "--set", f"dem.load.history_interval={final_strain / 200}"]
