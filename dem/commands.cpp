@@ -132,6 +132,46 @@ int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, co
   return 0;
 }
 
+int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
+                    const std::string& output) {
+  namespace fs = std::filesystem;
+  const auto start = Clock::now();
+  require_input(
+      !fs::exists(output),
+      fmt::format("consolidate: --output '{}' exists: give a new file (nothing is overwritten)", output));
+  const fs::path folder = fs::path(output).parent_path();
+  if (!folder.empty()) create_output_folder(folder.string());
+  const auto provenance = provenance_of(context, "consolidate");
+  const DemConfig& config = context.config;
+  Simulation simulation = io::from_checkpoint(checkpoint, input, context.comm);
+  const double p_before = mean_stress_compression_positive(simulation.stress());
+  const StateMeasures before = simulation.measure();
+  // The rate of prepare's own consolidation (dem.prepare.inertial_number).
+  const double rate =
+      strain_rate_for_inertial_number(config.prepare.inertial_number, config.particles.d50,
+                                      config.particles.density, config.prepare.confining_pressure);
+  protocol::with_loading_contacts(simulation, config, rate);
+  const protocol::Relaxation relaxed = protocol::consolidate(simulation, config, rate, context.logger);
+  simulation.watch_equilibrium(false);
+  SectionTimes writing_times({"output"});
+  {
+    const ScopedSection writing(writing_times, 0);
+    io::write_checkpoint(output, simulation, {checkpoint.rng_state, {}}, provenance);
+  }
+  const StateMeasures m = simulation.measure();
+  context.logger->info(
+      "consolidate of '{}': {} steps ({} verifying, {} windows left), p {:.6g} -> {:.6g} Pa, "
+      "e {:.5f} -> {:.5f}, Z {:.3f} -> {:.3f}, Z without rattlers {:.3f} ({} rattlers); wrote {}",
+      input, relaxed.steps, relaxed.verifying_steps, relaxed.windows_left, p_before, m.mean_stress,
+      before.void_ratio, m.void_ratio, before.coordination, m.coordination, m.coordination_no_rattlers,
+      m.n_rattlers, output);
+  const double wall = seconds_since(start);
+  protocol::log_timing(context.logger,
+                       protocol::run_timing(simulation.times(), writing_times, wall, context.comm), wall,
+                       context.comm.size());
+  return 0;
+}
+
 // Relaxes a checkpoint with its own loading control (strain axes held, the mean-stress servo on)
 // to the verified equilibrium of dem.equilibrium and writes it to `output`: the static state that
 // the probes' stiffness assumes (paper section 4), from a checkpoint written at OVAL's looser

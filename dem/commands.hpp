@@ -49,4 +49,10 @@ int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, co
 int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
               const std::string& output);
 
+/// consolidate: an assembly from another code (aniso-dem import) consolidated isotropically to
+/// dem.prepare.confining_pressure with the loading's contacts and relaxed to the verified
+/// equilibrium, written to `output` as a prepared assembly that `load` starts from.
+int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
+                    const std::string& output);
+
 } // namespace aniso::dem

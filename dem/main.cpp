@@ -33,16 +33,25 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   auto* relax = app.add_subcommand(
       "relax", "relax a checkpoint at its own loading control to the verified equilibrium of "
                "dem.equilibrium and write it to --output (a static state for the probes)");
+  auto* consolidate = app.add_subcommand(
+      "consolidate", "consolidate an imported assembly isotropically to dem.prepare.confining_pressure with "
+                     "the loading's friction, relaxed to the verified equilibrium (--output: a prepared "
+                     "assembly for load)");
   auto* import = app.add_subcommand(
-      "import", "a sphere assembly from a LAMMPS/LIGGGHTS data file or YADE's text export, with the "
-                "tangential forces of a contact dump, as a checkpoint (--output)");
+      "import",
+      "a sphere assembly from a LAMMPS/LIGGGHTS data file, YADE's text export or a DEMPLA D-file, with the "
+      "tangential forces of a contact dump, as a checkpoint (--output)");
   auto* export_ = app.add_subcommand(
       "export", "a checkpoint as a LAMMPS data file (and contact dump), or as XDMF for ParaView "
                 "(particles and force chains)");
   dem::interop::ImportOptions import_options;
-  import->add_option("--input", import_options.input, "LAMMPS data file, or YADE text export")->required();
-  import->add_option("--format", import_options.format, "lammps (default) or yade")
-      ->check(CLI::IsMember({"lammps", "yade"}));
+  import->add_option("--input", import_options.input, "LAMMPS data file, YADE text export or DEMPLA D-file")
+      ->required();
+  import->add_option("--format", import_options.format, "lammps (default), yade or dempla")
+      ->check(CLI::IsMember({"lammps", "yade", "dempla"}));
+  import->add_option("--d50", import_options.d50,
+                     "scale every length so that the median diameter by volume is this [m] (DEMPLA's "
+                     "samples have D50 = 1)");
   import->add_option("--cell", import_options.cell, "yade: the periodic cell's lengths LX,LY,LZ [m]")
       ->expected(3)
       ->delimiter(',');
@@ -59,9 +68,10 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   import->fallthrough();
   dem::interop::ExportOptions export_options;
   export_->add_option("--input", export_options.input, "checkpoint (HDF5)")->required();
-  export_->add_option("--format", export_options.format, "lammps (default) or xdmf")
-      ->check(CLI::IsMember({"lammps", "xdmf"}));
-  export_->add_option("--output", export_options.output, "LAMMPS data file, or .xmf for xdmf")->required();
+  export_->add_option("--format", export_options.format, "lammps (default), xdmf or dempla")
+      ->check(CLI::IsMember({"lammps", "xdmf", "dempla"}));
+  export_->add_option("--output", export_options.output, "LAMMPS data file, .xmf for xdmf, or DEMPLA D-file")
+      ->required();
   export_->add_option(
       "--contacts", export_options.contacts,
       "lammps: also write every contact as a `dump local` file (id1 id2 fnx fny fnz ftx fty ftz)");
@@ -73,6 +83,11 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   relax->add_option("--input", input, "checkpoint to relax (HDF5)")->required();
   relax->add_option("--output", output, "relaxed checkpoint to write (HDF5; not the input)")->required();
   relax->fallthrough();
+  consolidate->add_option("--input", input, "checkpoint to consolidate, e.g. from aniso-dem import (HDF5)")
+      ->required();
+  consolidate->add_option("--output", output, "prepared assembly to write (HDF5; must not exist)")
+      ->required();
+  consolidate->fallthrough();
   hold->add_option("--input", input, "checkpoint to hold (HDF5)")->required();
   hold->add_option("--steps", hold_options.steps, "time steps to hold")
       ->required()
@@ -101,7 +116,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   const Logger logger = make_logger("aniso-dem", comm, options.log_level);
 
   std::optional<h5::Checkpoint> checkpoint;
-  if (load->parsed() || hold->parsed() || relax->parsed()) {
+  if (load->parsed() || hold->parsed() || relax->parsed() || consolidate->parsed()) {
     checkpoint = h5::read_checkpoint(input, comm);
     logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->particles.size(),
                  checkpoint->contacts.size(), checkpoint->step);
@@ -126,6 +141,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   if (import->parsed())
     return dem::interop::run_import(import_options, config, reader, context.command_line, logger, comm);
   if (relax->parsed()) return dem::run_relax(context, *checkpoint, input, output);
+  if (consolidate->parsed()) return dem::run_consolidate(context, *checkpoint, input, output);
   if (prepare->parsed()) return dem::run_prepare(context);
   return dem::run_load(context, *checkpoint, input, load_options);
 }

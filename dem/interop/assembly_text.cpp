@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -137,6 +138,14 @@ std::size_t skip_blank(const TextLines& lines, std::size_t k) {
   while (k < lines.size() && blank(lines[k]))
     ++k;
   return k;
+}
+
+// InputError naming the first particle that is not a sphere, and why the format needs spheres.
+void require_spheres(const h5::Checkpoint& checkpoint, const std::string& why) {
+  const auto& p = checkpoint.particles;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    require_input(p.aspect_ratio[k] == 1.0, fmt::format("export: particle {} has aspect ratio {:g}: {}",
+                                                        p.id[k], p.aspect_ratio[k], why));
 }
 
 } // namespace
@@ -277,6 +286,83 @@ SphereAssembly read_yade_text(const std::string& path, const Vec3& lengths) {
   return result;
 }
 
+SphereAssembly read_dempla_dfile(const std::string& path) {
+  const TextLines lines(path);
+  constexpr int sphere_code = 4;
+  const auto words_of = [&](std::size_t k, std::size_t expected, const char* what) {
+    if (k >= lines.size()) lines.fail(k, fmt::format("the file ends before the {} line", what));
+    const std::vector<std::string> w = split_words(lines[k]);
+    if (w.size() != expected)
+      lines.fail(k, fmt::format("{} words on the {} line, expected {}", w.size(), what, expected));
+    return w;
+  };
+  const int shape = number<int>(lines, 0, words_of(0, 1, "shape code")[0], "shape code");
+  if (shape != sphere_code)
+    lines.fail(0, fmt::format("shape code {}: aniso imports DEMPLA's spheres (code 4) only; ovoids (5) "
+                              "and the 2D and clustered shapes are not read",
+                              shape));
+  const std::vector<std::string> head = words_of(1, 4, "count and cell");
+  const auto count = number<std::int64_t>(lines, 1, head[0], "particle count");
+  if (count <= 0) lines.fail(1, fmt::format("particle count {}, expected > 0", count));
+  SphereAssembly result;
+  result.source = path;
+  result.format = "dempla";
+  for (int a = 0; a < 3; ++a) {
+    result.lengths[a] = number<double>(lines, 1, head[static_cast<std::size_t>(a) + 1], "cell length");
+    if (!(result.lengths[a] > 0)) lines.fail(1, fmt::format("cell length {}, expected > 0", head[1 + a]));
+  }
+  for (const std::string& offset : words_of(2, 3, "cell offsets"))
+    if (number<double>(lines, 2, offset, "cell offset") != 0.0)
+      lines.fail(2, fmt::format("cell offset {}: aniso's periodic cell is rectangular (all three offsets "
+                                "must be 0)",
+                                offset));
+  std::size_t k = 3;
+  for (; k < lines.size() && static_cast<std::int64_t>(result.size()) < count; ++k) {
+    if (blank(lines[k])) continue;
+    const std::vector<std::string> w = words_of(k, 4, "sphere (radius x1 x2 x3)");
+    const double radius = number<double>(lines, k, w[0], "radius");
+    if (!(radius > 0)) lines.fail(k, fmt::format("radius {}, expected > 0", w[0]));
+    Vec3 x;
+    for (std::size_t a = 0; a < 3; ++a)
+      x[static_cast<int>(a)] = number<double>(lines, k, w[a + 1], "position");
+    result.id.push_back(result.id.size() + 1);
+    result.diameter.push_back(2 * radius);
+    result.position.push_back(x);
+  }
+  if (static_cast<std::int64_t>(result.size()) < count)
+    throw FileError(fmt::format("{}: {} spheres, the header says {}", path, result.size(), count));
+  for (; k < lines.size(); ++k)
+    if (!blank(lines[k])) lines.fail(k, fmt::format("more rows than the {} spheres of the header", count));
+  result.velocity.assign(result.size(), Vec3::Zero());
+  result.angular_velocity.assign(result.size(), Vec3::Zero());
+  return result;
+}
+
+double median_by_volume(std::vector<double> diameters) {
+  std::sort(diameters.begin(), diameters.end());
+  double total = 0;
+  for (const double d : diameters)
+    total += d * d * d;
+  double below = 0;
+  for (const double d : diameters) {
+    below += d * d * d;
+    if (below >= 0.5 * total) return d;
+  }
+  return diameters.back();
+}
+
+SphereAssembly scaled_to_d50(SphereAssembly assembly, double d50) {
+  require_input(d50 > 0 && std::isfinite(d50), fmt::format("import: --d50 {:g}, expected > 0 [m]", d50));
+  const double factor = d50 / median_by_volume(assembly.diameter);
+  assembly.lengths *= factor;
+  for (std::size_t k = 0; k < assembly.size(); ++k) {
+    assembly.diameter[k] *= factor;
+    assembly.position[k] *= factor;
+    assembly.velocity[k] *= factor;
+  }
+  return assembly;
+}
+
 std::vector<std::string> split_words(const std::string& text) {
   std::istringstream in(text);
   std::vector<std::string> result;
@@ -296,11 +382,7 @@ std::vector<std::uint64_t> lammps_ids(const h5::Checkpoint& checkpoint) {
 
 void write_lammps_data(const std::string& path, const h5::Checkpoint& checkpoint) {
   const auto& p = checkpoint.particles;
-  for (std::size_t k = 0; k < p.size(); ++k)
-    require_input(p.aspect_ratio[k] == 1.0,
-                  fmt::format("export: particle {} has aspect ratio {:g}: a LAMMPS data file of "
-                              "`atom_style sphere` holds spheres only",
-                              p.id[k], p.aspect_ratio[k]));
+  require_spheres(checkpoint, "a LAMMPS data file of `atom_style sphere` holds spheres only");
   const std::vector<std::uint64_t> ids = lammps_ids(checkpoint);
   const Vec3& lengths = checkpoint.cell.lengths;
   std::string text = fmt::format("LAMMPS data file (atom_style sphere) exported by aniso-dem, step {}\n\n{} "
@@ -324,6 +406,22 @@ void write_lammps_data(const std::string& path, const h5::Checkpoint& checkpoint
     const Vec3& w = p.angular_velocity[k];
     text += fmt::format("{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", ids[k], v.x(), v.y(), v.z(),
                         w.x(), w.y(), w.z());
+  }
+  h5::write_text_atomically(path, text);
+}
+
+void write_dempla_dfile(const std::string& path, const h5::Checkpoint& checkpoint) {
+  const auto& p = checkpoint.particles;
+  require_spheres(checkpoint, "the DEMPLA export writes spheres (D-file shape 4) only");
+  const Vec3& lengths = checkpoint.cell.lengths;
+  // The column widths of DEMPLA's own writer (octave/Write_Dfile_Spheres.m), which its reader expects.
+  std::string text = fmt::format("4\n{:6d}{:25.17e}{:25.17e}{:25.17e}\n      {:25.17e}{:25.17e}{:25.17e}\n",
+                                 p.size(), lengths.x(), lengths.y(), lengths.z(), 0.0, 0.0, 0.0);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    Vec3 x = p.position[k];
+    for (int a = 0; a < 3; ++a)
+      x[a] -= lengths[a] * std::floor(x[a] / lengths[a]);
+    text += fmt::format("{:25.17e}{:25.17e}{:25.17e}{:25.17e}\n", p.diameter[k] / 2, x.x(), x.y(), x.z());
   }
   h5::write_text_atomically(path, text);
 }

@@ -1,8 +1,9 @@
 #pragma once
 // Sphere assemblies in the text formats of other DEM codes: LAMMPS / LIGGGHTS data files
 // (`read_data`, `atom_style sphere` or `granular`) and YADE's text export of spheres
-// (`yade.export.text`, "x y z r" lines). The way in and out for `aniso-dem import` and
-// `aniso-dem export` (docs/user-guide.md, "Bringing a packing from another code").
+// (`yade.export.text`, "x y z r" lines) and DEMPLA/OVAL start files ("D-files" of spheres,
+// Kuhn's code: github.com/mrkuhn53/dempla, octave/Read_D_file3.m). The way in and out for `aniso-dem import`
+// and `aniso-dem export` (docs/user-guide.md, "Bringing a packing from another code").
 
 #include "common/h5/checkpoint.hpp"
 #include "common/tensor.hpp"
@@ -17,7 +18,7 @@ namespace aniso::dem::interop {
 /// corner (not yet wrapped), one row per sphere.
 struct SphereAssembly {
   std::string source; ///< the file read
-  std::string format; ///< "lammps" or "yade"
+  std::string format; ///< "lammps", "yade" or "dempla"
   Vec3 lengths = Vec3::Zero();
   std::vector<std::uint64_t> id;
   std::vector<double> diameter;       ///< [m]
@@ -39,6 +40,25 @@ SphereAssembly read_lammps_data(const std::string& path);
 /// Reads YADE's text export of spheres ("x y z r" per line, '#' comments) in a periodic cell
 /// of the given lengths (YADE's text export does not carry the cell); ids are 1..N in file order.
 SphereAssembly read_yade_text(const std::string& path, const Vec3& lengths);
+
+/// Reads a DEMPLA (OVAL) D-file of spheres: the shape code 4; the particle count and the cell's
+/// lengths; the cell's three shear offsets (must be 0: aniso's cell is rectangular); then one
+/// "radius x1 x2 x3" row per sphere. Ids are 1..N in file order. DEMPLA has no units: its sample
+/// files are scaled to D50 = 1 (give import --d50 to make them metres). Other shapes (ovoids,
+/// code 5) are refused by name.
+SphereAssembly read_dempla_dfile(const std::string& path);
+
+/// Writes a whole checkpoint of spheres as a DEMPLA D-file (shape 4, lengths in metres, positions
+/// wrapped into [0, L)), the start file of a DEMPLA run on the same assembly. InputError if a
+/// particle is not a sphere.
+void write_dempla_dfile(const std::string& path, const h5::Checkpoint& checkpoint);
+
+/// The diameter below which half the solid volume lies (the paper's D50, by volume).
+double median_by_volume(std::vector<double> diameters);
+
+/// The assembly with every length (cell, positions, diameters, velocities) multiplied so that
+/// its median diameter by volume is `d50`.
+SphereAssembly scaled_to_d50(SphereAssembly assembly, double d50);
 
 /// Writes a whole checkpoint of spheres (every row) as a LAMMPS data file (`atom_style sphere`,
 /// box [0, L), one atom type), with its Velocities. The LAMMPS id of a particle is its

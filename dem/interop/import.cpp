@@ -18,20 +18,6 @@
 namespace aniso::dem::interop {
 namespace {
 
-// The diameter below which half the solid volume lies (the paper's D50, by volume).
-double median_by_volume(std::vector<double> diameters) {
-  std::sort(diameters.begin(), diameters.end());
-  double total = 0;
-  for (const double d : diameters)
-    total += d * d * d;
-  double below = 0;
-  for (const double d : diameters) {
-    below += d * d * d;
-    if (below >= 0.5 * total) return d;
-  }
-  return diameters.back();
-}
-
 // One density for the assembly (aniso's time step and inertial number use it).
 double assembly_density(const SphereAssembly& assembly, const DemConfig& config,
                         const config::Reader& reader) {

@@ -27,18 +27,28 @@ int run_import(const ImportOptions& options, DemConfig& config, config::Reader& 
   require_input(
       !std::filesystem::exists(options.output),
       fmt::format("import: --output '{}' exists: give a new file (nothing is overwritten)", options.output));
-  require_input(options.format == "lammps" || options.format == "yade",
-                fmt::format("import: --format '{}': expected lammps (LAMMPS/LIGGGHTS data file) or yade "
-                            "(YADE's text export of spheres)",
+  require_input(options.format == "lammps" || options.format == "yade" || options.format == "dempla",
+                fmt::format("import: --format '{}': expected lammps (LAMMPS/LIGGGHTS data file), yade "
+                            "(YADE's text export of spheres) or dempla (DEMPLA/OVAL D-file of spheres)",
                             options.format));
   require_input(options.format == "yade" || options.cell.empty(),
                 "import: --cell is for --format yade (a LAMMPS data file carries its box)");
-  const SphereAssembly assembly =
-      options.format == "lammps"
-          ? read_lammps_data(options.input)
-          : read_yade_text(options.input, options.cell.size() == 3
-                                              ? Vec3(options.cell[0], options.cell[1], options.cell[2])
-                                              : Vec3::Zero());
+  require_input(options.d50 >= 0, fmt::format("import: --d50 {:g}, expected > 0 [m]", options.d50));
+  SphereAssembly assembly;
+  if (options.format == "lammps")
+    assembly = read_lammps_data(options.input);
+  else if (options.format == "dempla")
+    assembly = read_dempla_dfile(options.input);
+  else
+    assembly = read_yade_text(options.input, options.cell.size() == 3
+                                                 ? Vec3(options.cell[0], options.cell[1], options.cell[2])
+                                                 : Vec3::Zero());
+  // DEMPLA's files have no units (its samples: D50 = 1); the tangential forces of a dump would
+  // not scale with the lengths, so the two are not combined.
+  require_input(options.d50 == 0 || options.contacts.empty(),
+                "import: --d50 rescales the assembly, and a contact dump's forces would not match it: "
+                "give one or the other");
+  if (options.d50 > 0) assembly = scaled_to_d50(std::move(assembly), options.d50);
   std::vector<DumpedContact> dumped;
   if (!options.contacts.empty())
     dumped = read_contact_dump(options.contacts, parse_contact_columns(options.contact_columns));
@@ -73,10 +83,10 @@ int run_import(const ImportOptions& options, DemConfig& config, config::Reader& 
 }
 
 int run_export(const ExportOptions& options, const Logger& logger, const mpi::Comm& comm) {
-  require_input(options.format == "lammps" || options.format == "xdmf",
+  require_input(options.format == "lammps" || options.format == "xdmf" || options.format == "dempla",
                 fmt::format("export: --format '{}': expected lammps (data file, and with --contacts a "
-                            "`dump local` of the contact forces) or xdmf (particles and force chains for "
-                            "ParaView)",
+                            "`dump local` of the contact forces), xdmf (particles and force chains for "
+                            "ParaView) or dempla (a DEMPLA/OVAL D-file of spheres, its start file)",
                             options.format));
   require_input(options.format == "lammps" || options.contacts.empty(),
                 "export: --contacts is for --format lammps (the XDMF output holds the contacts)");
@@ -88,6 +98,12 @@ int run_export(const ExportOptions& options, const Logger& logger, const mpi::Co
     logger->info("export of '{}': {} particles and {} contacts ({} strong) in {} and {}", options.input,
                  written.particles, written.contacts, written.strong_contacts, written.xdmf_path,
                  written.data_path);
+    return 0;
+  }
+  if (options.format == "dempla") {
+    write_dempla_dfile(options.output, checkpoint);
+    logger->info("export of '{}': {} spheres in DEMPLA D-file {} (lengths in metres)", options.input,
+                 checkpoint.particles.size(), options.output);
     return 0;
   }
   write_lammps_data(options.output, checkpoint);

@@ -16,8 +16,9 @@ namespace aniso::dem::interop {
 
 struct ImportOptions {
   std::string input;             ///< LAMMPS data file or YADE text export
-  std::string format = "lammps"; ///< "lammps" or "yade"
+  std::string format = "lammps"; ///< "lammps", "yade" or "dempla"
   std::vector<double> cell;      ///< YADE: the periodic cell's lengths [m]
+  double d50 = 0;                ///< > 0: scale every length so that D50 by volume is this [m]
   std::string contacts;          ///< optional `dump local` file with tangential forces
   std::string contact_columns = "1,2,6";
   std::string output; ///< checkpoint to write (must not exist)
@@ -25,7 +26,7 @@ struct ImportOptions {
 
 struct ExportOptions {
   std::string input;             ///< checkpoint
-  std::string format = "lammps"; ///< "lammps" or "xdmf"
+  std::string format = "lammps"; ///< "lammps", "xdmf" or "dempla"
   std::string output;            ///< data file or .xmf
   std::string contacts;          ///< lammps: also write the contacts as a `dump local` file here
 };

@@ -115,6 +115,18 @@ void agitate(Simulation& simulation, double rms_speed, RandomStream& stream) {
     particles.velocity[k] -= drift;
 }
 
+// A uniformly distributed rotation: a normalised vector of four standard normals.
+Quat random_orientation(RandomStream& stream) {
+  for (;;) {
+    const double w = stream.normal(), x = stream.normal(), y = stream.normal(), z = stream.normal();
+    const Quat q(w, x, y, z); // drawn in sequence: argument evaluation order is unspecified
+    const double norm = q.norm();
+    if (norm > 1e-6) return Quat(q.coeffs() / norm);
+  }
+}
+
+} // namespace
+
 // Consolidates to p0 with the stress servo on all three axes and relaxes to static
 // equilibrium there (dem/protocol/relax.hpp): p within consolidation_tolerance and the
 // unbalanced-force ratio below dem.equilibrium.tolerance.
@@ -128,17 +140,14 @@ Relaxation consolidate(Simulation& simulation, const DemConfig& config, double r
   return relax_to_equilibrium(simulation, tolerances, max_steps, logger, "consolidation to p0");
 }
 
-// A uniformly distributed rotation: a normalised vector of four standard normals.
-Quat random_orientation(RandomStream& stream) {
-  for (;;) {
-    const double w = stream.normal(), x = stream.normal(), y = stream.normal(), z = stream.normal();
-    const Quat q(w, x, y, z); // drawn in sequence: argument evaluation order is unspecified
-    const double norm = q.norm();
-    if (norm > 1e-6) return Quat(q.coeffs() / norm);
-  }
+void with_loading_contacts(Simulation& simulation, const DemConfig& config, double rate) {
+  SimulationSettings settings = simulation.settings();
+  settings.material.friction = config.material.friction;
+  settings.material.damping_ratio = config.integration.damping;
+  settings.servo.max_rate = rate;
+  settings.global_damping = config.integration.global_damping;
+  simulation.reconfigure(settings);
 }
-
-} // namespace
 
 double refinement_energy(std::span<const AgitationRun> runs, double aim) {
   double x_lo = 0, e_lo = INFINITY, x_hi = INFINITY, e_hi = 0;
@@ -348,12 +357,7 @@ Consolidated Protocol::consolidate_seized(Seized& seized) {
   Simulation& chosen = result.state;
   // Consolidated with the friction and damping that loading will use, so that the relaxation
   // proves the state static with them (a state verified with heavier damping can creep without it).
-  SimulationSettings settings = chosen.settings();
-  settings.material.friction = config_.material.friction;
-  settings.material.damping_ratio = config_.integration.damping;
-  settings.servo.max_rate = rate_;
-  settings.global_damping = config_.integration.global_damping;
-  chosen.reconfigure(settings);
+  with_loading_contacts(chosen, config_, rate_);
   result.relaxation = consolidate(chosen, config_, rate_, logger_);
   consolidation_seconds_ += result.relaxation.seconds;
   chosen.watch_equilibrium(false);

@@ -10,6 +10,7 @@
 #include "common/log.hpp"
 #include "common/rng.hpp"
 #include "dem/config.hpp"
+#include "dem/protocol/relax.hpp"
 #include "dem/simulation.hpp"
 
 #include <optional>
@@ -48,6 +49,16 @@ double refinement_energy(std::span<const AgitationRun> runs, double aim);
 /// generated identically on every rank and decomposed over `comm` (collective).
 Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomStream& placement,
                            const mpi::Comm& comm);
+
+/// Isotropic consolidation to p0 (dem.prepare.confining_pressure): the stress servo on all three
+/// axes at strain rates up to `rate`, relaxed to the verified equilibrium of dem.equilibrium with p
+/// within dem.prepare.consolidation_tolerance (collective).
+Relaxation consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger);
+
+/// Gives the simulation the contacts loading will use (dem.material.friction, the contact and
+/// global damping of dem.integration) and the servo's rate limit `rate`: a state consolidated
+/// with them is static under them.
+void with_loading_contacts(Simulation& simulation, const DemConfig& config, double rate);
 
 /// The whole preparation protocol (collective); the result does not depend on the rank count.
 PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm);
