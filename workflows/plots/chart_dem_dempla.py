@@ -29,6 +29,7 @@ LABELS = {
     "aniso_body": ("aniso set as DEMPLA (body damping, no contact damping)", "C2", "--"),
     "aniso_oval": ("aniso, OVAL's increments (paper configs)", "C4", ":"),
     "aniso_qs": ("aniso, quasi-static (3e-5, minimised to 1e-3)", "k", "-"),
+    "dempla_no_spin_damping": ("DEMPLA without its body damping of rotation", "C8", "-."),
     "dempla_slow": ("DEMPLA as its samples run, a tenth of the rate", "C5", "-"),
     "aniso_slow": ("aniso, I = 8.1e-5", "C9", "-"),
 }

@@ -27,11 +27,13 @@
 # coordination); workflows/plots/chart_dem_dempla.py charts them.
 #
 # usage: dempla_biaxial.sh BUILD_DIR WORK_DIR DEMPLA_REPO [FINAL_STRAIN [RUN...]]
-#   DEMPLA_REPO: a local copy of github.com/mrkuhn53/dempla, branch master (source/, StartFiles/);
+#   DEMPLA_REPO: a local copy of github.com/mrkuhn53/dempla, branch master (source/, StartFiles/),
+#   or - for the environment variable DEMPLA_REPO;
 #   exit 77 (skipped) without it or without gfortran. FINAL_STRAIN defaults to 0.20 (about 30 min
 #   of DEMPLA and 10 min of aniso per run on one core).
 set -euo pipefail
-build=$(cd "$1" && pwd) work=$2 repo=${3:-${DEMPLA_REPO:-}} final=${4:-0.20}
+build=$(cd "$1" && pwd) work=$2 repo=${3:--} final=${4:-0.20}
+[ "$repo" = - ] && repo=${DEMPLA_REPO:-}
 shift $(($# < 4 ? $# : 4))
 runs=${*:-dempla_default aniso_default aniso_oval dempla_no_body aniso_body}
 [ -n "$repo" ] && [ -f "$repo/source/dempla-0.2.5.f" ] ||
