@@ -36,7 +36,9 @@ struct IntegrationConfig {
   double time_step = 0.0;      ///< explicit step [s]; 0 = from the fraction; refused above critical
   double damping = 0.05;       ///< viscous contact damping ratio during loading (see docs/methods/dem.md)
   double global_damping = 0.0; ///< global damping of the fluctuating motion during loading, of critical
-  double skin = 0.1;           ///< neighbour-list skin in units of D50
+  /// The global damping rate of the spin as a multiple of that of the translation (1: the same rate).
+  double global_damping_spin_factor = 1.0;
+  double skin = 0.1; ///< neighbour-list skin in units of D50
   std::int64_t control_interval =
       4; ///< steps between stress measurements and servo updates (2 t_R at the default step)
   double servo_gain = 0.2;         ///< fraction of the stress error removed per servo update

@@ -151,9 +151,11 @@ void Simulation::update_damping_rate() {
 void Simulation::step() {
   const double dt = settings_.time_step;
   const double damping_factor = std::exp(-0.5 * dt * damping_rate_);
+  const double spin_damping_factor =
+      std::exp(-0.5 * dt * damping_rate_ * settings_.global_damping_spin_factor);
   auto clock = SectionTimes::Clock::now();
   model::kick(particles_, 0.5 * dt);
-  if (damping_rate_ > 0) model::damp_velocities(particles_, damping_factor);
+  if (damping_rate_ > 0) model::damp_velocities(particles_, damping_factor, spin_damping_factor);
   model::drift(particles_, cell_, control_.strain_rate, dt);
   clock = times_->add_since(integration, clock);
   data::ListMotion motion = neighbors_.measure_motion(particles_, cell_);
@@ -174,7 +176,7 @@ void Simulation::step() {
   compute_forces((step_ + 1) % settings_.control_interval == 0);
   clock = times_->add_since(force_pass, clock);
   model::kick(particles_, 0.5 * dt);
-  if (damping_rate_ > 0) model::damp_velocities(particles_, damping_factor);
+  if (damping_rate_ > 0) model::damp_velocities(particles_, damping_factor, spin_damping_factor);
   time_ += dt;
   ++step_;
   clock = times_->add_since(integration, clock, 0); // the step's second half: one call per step

@@ -39,6 +39,10 @@ struct SimulationSettings {
   /// Global damping of the fluctuating motion as a fraction of critical for the mean
   /// particle on the mean contact stiffness: gamma = 2 ratio sqrt(k_n / m) (docs/methods/dem.md).
   double global_damping = 0;
+  /// The spin's damping rate as a multiple of gamma. DEMPLA's samples give every grain five times
+  /// a solid sphere's moment of inertia and damp spin on it, about 6 times aniso's torque at
+  /// factor 1: a rolling resistance in effect (docs/validation.md, "DEM against DEMPLA").
+  double global_damping_spin_factor = 1;
   double explosion_overlap = 0.05; ///< stop when an overlap exceeds this fraction of the smaller radius
   double splice_angle = 0.7853981633974483; ///< ovoid splice angle beta [rad], assembly-wide
   model::HertzRadius hertz_radius = model::HertzRadius::halfwidth;

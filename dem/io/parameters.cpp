@@ -95,6 +95,8 @@ struct Parameter {
   std::optional<StoredUnit> stored_as = {};
   std::size_t min_count = 0;           ///< list keys: fewest elements
   std::vector<std::string> words = {}; ///< choice keys: the words, in enum order
+  /// The stored value of a checkpoint written before the attribute existed (none: it must be there).
+  std::optional<double> absent = {};
 };
 
 constexpr double degrees_per_radian = 180.0;
@@ -238,6 +240,19 @@ const std::vector<Parameter>& parameters() {
        .get = &get_setting<&S::global_damping>,
        .set = &set_setting<&S::global_damping>,
        .binding = Binding::resumed},
+      {.key = "dem.integration.global_damping_spin_factor",
+       .config = &member<&D::integration, &IntegrationConfig::global_damping_spin_factor>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 100.0),
+       .help =
+           "the global damping rate of the spin as a multiple of that of the translation (1: the same; "
+           "about 6 gives the damping torque of DEMPLA's samples, whose grains have five times a sphere's "
+           "moment of inertia: a rolling resistance in effect)",
+       .attribute = "global_damping_spin_factor",
+       .get = &get_setting<&S::global_damping_spin_factor>,
+       .set = &set_setting<&S::global_damping_spin_factor>,
+       .binding = Binding::resumed,
+       .absent = 1.0},
       {.key = "dem.integration.skin",
        .config = &member<&D::integration, &IntegrationConfig::skin>,
        .unit = units::none,
@@ -638,7 +653,10 @@ SimulationSettings settings_from_checkpoint(const h5::Checkpoint& checkpoint, co
   SimulationSettings settings;
   for (const Parameter& parameter : parameters()) {
     if (parameter.attribute.empty()) continue;
-    const double value = h5::parameter(checkpoint, std::string(parameter.attribute), path);
+    const std::string attribute(parameter.attribute);
+    const double value = parameter.absent && !h5::has_parameter(checkpoint, attribute)
+                             ? *parameter.absent
+                             : h5::parameter(checkpoint, attribute, path);
     const Range range = parameter.stored_range.value_or(parameter.range);
     if (!range.contains(value)) {
       throw FileError(fmt::format("{}: /parameters (attribute '{}'): value {:g} is out of range, expected {}",

@@ -53,10 +53,10 @@ void steer_velocities(data::Particles& particles, double keep, double toward) {
   }
 }
 
-void damp_velocities(data::Particles& particles, double factor) {
+void damp_velocities(data::Particles& particles, double factor, double spin_factor) {
   for (std::size_t k = 0; k < particles.n_owned; ++k) {
     particles.velocity[k] *= factor;
-    particles.angular_velocity[k] *= factor;
+    particles.angular_velocity[k] *= spin_factor;
   }
 }
 

@@ -29,10 +29,11 @@ MotionSums motion_sums(const data::Particles& particles);
 void steer_velocities(data::Particles& particles, double keep, double toward);
 
 /// Global viscous damping of the fluctuating motion: multiplies every owned particle's
-/// fluctuating and angular velocity by `factor` = exp(-gamma h), the exact decay over h of
+/// fluctuating velocity by `factor` = exp(-gamma h) and the angular velocity by `spin_factor`
+/// (exp(-f gamma h) for a spin rate f times gamma), the exact decay over h of
 /// dv/dt = -gamma v. Acting on the fluctuating velocity only, it leaves the affine field of
 /// the deforming cell undamped (Kuhn's OVAL practice, shared/reference/ovoid.md).
-void damp_velocities(data::Particles& particles, double factor);
+void damp_velocities(data::Particles& particles, double factor, double spin_factor);
 
 /// Moves particles by their fluctuating velocity, then strains the cell by
 /// `strain_rate` over dt and maps every position affinely with it; wraps into the cell.

@@ -46,7 +46,7 @@ void Fire::update() {
     }
     return;
   }
-  model::damp_velocities(simulation_.particles(), 0.0);
+  model::damp_velocities(simulation_.particles(), 0.0, 0.0);
   ++stops_;
   n_downhill_ = 0;
   alpha_ = alpha_start;

@@ -118,6 +118,7 @@ void start_loading(Simulation& simulation, const DemConfig& config) {
   settings.material.friction = config.material.friction;
   settings.material.damping_ratio = config.integration.damping;
   settings.global_damping = config.integration.global_damping;
+  settings.global_damping_spin_factor = config.integration.global_damping_spin_factor;
   // The servoed axis must outrun dilatancy but not the assembly's own response.
   settings.servo.max_rate = 20.0 * rate;
   simulation.reconfigure(settings);

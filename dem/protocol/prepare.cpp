@@ -146,6 +146,7 @@ void with_loading_contacts(Simulation& simulation, const DemConfig& config, doub
   settings.material.damping_ratio = config.integration.damping;
   settings.servo.max_rate = rate;
   settings.global_damping = config.integration.global_damping;
+  settings.global_damping_spin_factor = config.integration.global_damping_spin_factor;
   simulation.reconfigure(settings);
 }
 

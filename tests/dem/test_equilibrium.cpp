@@ -115,6 +115,28 @@ TEST(Equilibrium, GlobalDampingDecaysTheFluctuatingMotionAtItsRate) {
   EXPECT_EQ(simulation.particles().velocity[2].x(), 0.0);
 }
 
+TEST(Equilibrium, SpinDampsAtItsOwnMultipleOfTheGlobalRate) {
+  // dem.integration.global_damping_spin_factor f: a free sphere's spin decays as exp(-f gamma t)
+  // while its speed decays as exp(-gamma t); f = 1 damps both alike (the former behaviour).
+  const double overlap = 1e-6, zeta = 0.05, spin_factor = 6.0;
+  Simulation simulation = spheres_on_a_line({0.3e-3, 0.3e-3 + 2 * radius - overlap, 0.8e-3}, zeta);
+  SimulationSettings settings = simulation.settings();
+  settings.global_damping_spin_factor = spin_factor;
+  simulation.reconfigure(settings);
+  const double gamma = simulation.global_damping_rate();
+  ASSERT_GT(gamma, 0.0);
+  simulation.particles().velocity[2] = Vec3(0.0, 1e-3, 0.0);
+  simulation.particles().angular_velocity[2] = Vec3(0.0, 0.0, 10.0);
+  const auto steps = static_cast<int>(simulation.settings().control_interval) - 1;
+  for (int n = 0; n < steps; ++n)
+    simulation.step();
+  const double t = steps * simulation.settings().time_step;
+  EXPECT_NEAR(simulation.particles().velocity[2].y(), 1e-3 * std::exp(-gamma * t), 1e-15);
+  EXPECT_NEAR(simulation.particles().angular_velocity[2].z(), 10.0 * std::exp(-spin_factor * gamma * t),
+              1e-12);
+  EXPECT_LT(simulation.particles().angular_velocity[2].z(), 10.0 * std::exp(-5.0 * gamma * t));
+}
+
 /// The prepared 150-sphere assembly of the tests, consolidated in equilibrium.
 const Simulation& prepared() {
   static const Simulation simulation = test::prepared_assembly(test::small_config(150, 5));

@@ -27,6 +27,7 @@ LABELS = {
     "dempla_no_body": ("DEMPLA set as aniso (contact damping, no body damping)", "C1", "--"),
     "aniso_default": ("aniso, I = 8.1e-4", "C0", "-"),
     "aniso_body": ("aniso set as DEMPLA (body damping, no contact damping)", "C2", "--"),
+    "aniso_body_spin": ("aniso set fully as DEMPLA (body damping, spin x6)", "C6", "--"),
     "aniso_oval": ("aniso, OVAL's increments (paper configs)", "C4", ":"),
     "aniso_qs": ("aniso, quasi-static (3e-5, minimised to 1e-3)", "k", "-"),
     "dempla_no_spin_damping": ("DEMPLA without its body damping of rotation", "C8", "-."),

@@ -23,6 +23,8 @@
 #   aniso_body       aniso set as DEMPLA is: global damping of the fluctuating motion (0.071 of
 #                    aniso's critical = DEMPLA's 0.03 of its own, see docs/validation.md), no
 #                    contact damping
+#   aniso_body_spin  aniso_body with the spin damped 6 times as fast (global_damping_spin_factor 6): the
+#                    damping torque of DEMPLA's samples (moment 5x a sphere's, spin rate 1.18x)
 # Every run writes WORK_DIR/results/<run>.csv (strain, q13, q23, p, eps_v, void_ratio,
 # coordination); workflows/plots/chart_dem_dempla.py charts them.
 #
@@ -151,6 +153,8 @@ for run in $runs; do
     aniso_oval) aniso_load "$run" dem.load.increment=1e-4 dem.load.increment_tolerance=1e-2 ;;
     aniso_body) aniso_load "$run" dem.load.inertial_number=8.1e-4 dem.integration.global_damping=0.071 \
       dem.integration.damping=0 ;;
+    aniso_body_spin) aniso_load "$run" dem.load.inertial_number=8.1e-4 dem.integration.global_damping=0.071 \
+      dem.integration.global_damping_spin_factor=6 dem.integration.damping=0 ;;
     *) echo "unknown run '$run'"; exit 2 ;;
   esac
 done
