@@ -17,6 +17,7 @@ tests/dem/peer/dempla_biaxial.sh: RunFiles in, A-file histories out. Written fro
   dempla_io.py stresses AFILE
       the first row's s11 s22 s33 [Pa, compression negative]: where a consolidation ramp starts
 """
+import re
 import sys
 
 import numpy as np
@@ -126,7 +127,6 @@ def write_aniso_history(history, out):
 
 
 def agreement(work):
-    import re
     start_dempla = -read_afile(f"{work}/dempla_consolidation/ARprobe.txt")[1][0, 7:10].mean()
     start_aniso = float(re.search(r"p = ([0-9.e+-]+) Pa", open(f"{work}/import.log").read()).group(1))
     a_rows = read_afile(f"{work}/dempla_consolidation/ARcons.txt")[1]
