@@ -54,6 +54,14 @@ public:
   explicit ConvergenceError(const std::string& message) : Error(ExitCode::convergence_failure, message) {}
 };
 
+/// SIGTERM reached a loop that polls stop_requested() (common/stop_request.hpp): the piece of work in
+/// progress is dropped, on every rank at once. A caller that can keep the pieces already finished
+/// catches it; otherwise the program ends with exit 143 and the message.
+class Interrupted : public Error {
+public:
+  explicit Interrupted(const std::string& message) : Error(ExitCode::interrupted, message) {}
+};
+
 /// Throws InputError(message) unless condition holds. For user-facing checks that stay on in Release.
 inline void require_input(bool condition, const std::string& message) {
   if (!condition) throw InputError(message);

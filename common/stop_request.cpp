@@ -1,6 +1,8 @@
 #include "common/stop_request.hpp"
 
 #include <csignal>
+#include <cstdlib>
+#include <string>
 
 namespace aniso {
 namespace {
@@ -25,6 +27,13 @@ bool stop_requested_here() {
 
 bool stop_requested(const mpi::Comm& comm) {
   return comm.size() == 1 ? stop_requested_here() : comm.any(stop_requested_here());
+}
+
+bool stop_requested(const mpi::Comm& comm, std::int64_t step) {
+  const char* stop_at = std::getenv("ANISO_TEST_STOP_AT_STEP");
+  const bool test_stop = stop_at != nullptr && *stop_at != '\0' && step >= std::stoll(stop_at);
+  const bool here = stop_requested_here() || test_stop;
+  return comm.size() == 1 ? here : comm.any(here);
 }
 
 } // namespace aniso

@@ -5,6 +5,8 @@
 
 #include "common/mpi.hpp"
 
+#include <cstdint>
+
 namespace aniso {
 
 /// Installs the SIGTERM handler (repeat calls do nothing more).
@@ -16,5 +18,10 @@ void install_stop_handler();
 /// Collective: true on every rank once any rank has received SIGTERM, so that all ranks stop
 /// at the same step.
 [[nodiscard]] bool stop_requested(const mpi::Comm& comm);
+
+/// Collective: stop_requested(comm), or true once `step` has reached the environment variable
+/// ANISO_TEST_STOP_AT_STEP: how the tests stop a run at a chosen step, inside the phase they
+/// mean, as a SIGTERM arriving then would (read here alone; unset, it does nothing).
+[[nodiscard]] bool stop_requested(const mpi::Comm& comm, std::int64_t step);
 
 } // namespace aniso

@@ -4,6 +4,8 @@
 #include "common/output_folder.hpp"
 #include "common/stop_request.hpp"
 #include "dem/io/checkpoint.hpp"
+#include "dem/io/prepare_pieces.hpp"
+#include "dem/io/relaxation_state.hpp"
 #include "dem/io/run_folder.hpp"
 #include "dem/protocol/hold.hpp"
 #include "dem/protocol/load.hpp"
@@ -13,6 +15,7 @@
 #include "dem/protocol/run_timing.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <filesystem>
@@ -40,21 +43,80 @@ std::string phase_line(const std::string& name, std::int64_t steps, std::int64_t
       wall_seconds > 0 ? 100.0 * seconds / wall_seconds : 0.0);
 }
 
+// The input's relaxation stopped on SIGTERM, which `command` --resume continues; a fresh run
+// refuses such a file, whose control and settings are the relaxation's, not the state's own.
+std::optional<io::InterruptedRelaxation> interrupted_input(const std::string& command,
+                                                           const std::string& input, bool resume) {
+  std::optional<io::InterruptedRelaxation> interrupted = io::read_interrupted_relaxation(input);
+  if (resume) {
+    require_input(interrupted.has_value() && interrupted->command == command,
+                  fmt::format("{} --resume: '{}' holds no interrupted {} (the file a {} stopped on SIGTERM "
+                              "writes, <output> with _interrupted before .h5)",
+                              command, input, command, command));
+  } else {
+    require_input(!interrupted.has_value(),
+                  fmt::format("{}: '{}' holds a relaxation of aniso-dem {} stopped on SIGTERM: continue "
+                              "that with --resume",
+                              command, input, interrupted ? interrupted->command : ""));
+  }
+  return interrupted;
+}
+
+// A relax or consolidate stopped on SIGTERM: its state beside `output`, from which the same
+// command with --resume continues to the bits of an uninterrupted run; exit 143.
+int stop_relaxation(const CommandContext& context, const Simulation& simulation, const std::string& command,
+                    const io::CheckpointLabels& labels, const h5::Provenance& provenance,
+                    const std::string& output, const protocol::RelaxationState& state) {
+  const std::string path = io::interrupted_path(output);
+  io::InterruptedRelaxation interrupted;
+  interrupted.command = command;
+  interrupted.purpose = command;
+  interrupted.state = state;
+  io::write_interrupted_checkpoint(path, simulation, labels, provenance, &interrupted);
+  context.logger->warn("{}: stopped on SIGTERM at step {} ({} steps relaxed): wrote {}; continue with "
+                       "--input {} --output {} --resume",
+                       command, simulation.step_count(), state.steps, path, path, output);
+  return static_cast<int>(ExitCode::interrupted);
+}
+
+// A prepare stopped on SIGTERM: the pieces it finished stay in its output folder, from which the
+// same command with --resume continues; exit 143.
+int stop_prepare(const CommandContext& context, const protocol::PrepareStop& stop) {
+  const std::vector<std::string> kept = io::prepare_piece_files(context.config.output_dir);
+  const bool resumed = context.command_line.ends_with(" --resume") ||
+                       context.command_line.find(" --resume ") != std::string::npos;
+  context.logger->warn("prepare: stopped on SIGTERM at step {} in the {}: wrote {}; kept in {}: {}; continue "
+                       "with the same command and --resume: {}{}",
+                       stop.step, stop.piece, stop.kept, context.config.output_dir, fmt::join(kept, ", "),
+                       context.command_line, resumed ? "" : " --resume");
+  return static_cast<int>(ExitCode::interrupted);
+}
+
 } // namespace
 
-int run_prepare(const CommandContext& context) {
+int run_prepare(const CommandContext& context, bool resume) {
   const auto start = Clock::now();
   const DemConfig& config = context.config;
   create_output_folder(config.output_dir);
   const io::RunFolderLock lock(config.output_dir, context.comm); // one writer per folder
   const auto provenance = provenance_of(context, "prepare");
-  protocol::PreparedAssembly prepared = protocol::prepare_assembly(config, context.logger, context.comm);
+  const std::size_t kept = io::check_prepare_folder(config.output_dir, resume, context.comm);
+  if (resume) {
+    context.logger->info("prepare --resume: {} pieces kept in {}{}", kept, config.output_dir,
+                         kept == 0 ? ": nothing to continue from, preparing from the start" : "");
+  }
+  const io::PreparePieces pieces(config.output_dir, provenance, context.comm);
+  install_stop_handler();
+  protocol::PreparedAssembly prepared =
+      protocol::prepare_assembly(config, context.logger, context.comm, pieces);
+  if (prepared.stopped) return stop_prepare(context, *prepared.stopped);
   const std::string path = config.output_dir + "/prepared.h5";
   SectionTimes output({"output"});
   {
     const ScopedSection writing(output, 0);
     io::write_checkpoint(path, *prepared.simulation, {prepared.rng_state, {}}, provenance);
   }
+  pieces.remove_all(); // prepared.h5 supersedes them
   const auto& m = prepared.consolidated;
   context.logger->info("wrote {}: e = {:.4f}, Z = {:.3f}, Z without rattlers = {:.3f}, p = {:.4g} Pa", path,
                        m.void_ratio, m.coordination, m.coordination_no_rattlers, m.mean_stress);
@@ -75,6 +137,12 @@ int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, co
   const io::RunFolderLock lock(config.output_dir, context.comm); // one writer per folder
   const auto provenance = provenance_of(context, "load");
   Simulation simulation = io::from_checkpoint(checkpoint, input, context.comm);
+  // Its control and settings are a relaxation's, not a state's own (as interrupted_input says).
+  require_input(options.resume || !io::read_interrupted_relaxation(input).has_value(),
+                fmt::format("load: '{}' holds a relaxation stopped on SIGTERM: continue that run with "
+                            "--resume (in its own dem.output_dir), or start from one of its numbered "
+                            "checkpoints",
+                            input));
   if (!options.resume) {
     protocol::start_loading(simulation,
                             config); // refuses a loading that would never end: before removing anything
@@ -86,9 +154,12 @@ int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, co
                    config.load.inertial_number, protocol::quasi_static_inertial_number);
   }
   const std::string run_id = options.resume ? checkpoint.run_id : io::new_run_id(context.comm);
+  const std::optional<io::InterruptedRelaxation> interrupted =
+      options.resume ? io::read_interrupted_relaxation(input) : std::nullopt;
   install_stop_handler();
-  const protocol::LoadSummary summary = protocol::run_loading(simulation, config, config.output_dir,
-                                                              provenance, logger, options.resume, run_id);
+  const protocol::LoadSummary summary =
+      protocol::run_loading(simulation, config, config.output_dir, provenance, logger, options.resume, run_id,
+                            interrupted ? &*interrupted : nullptr);
   protocol::log_timing(logger, summary.timing, summary.wall_seconds, context.comm.size(),
                        {phase_line("relaxation", summary.relaxation_steps, summary.steps,
                                    summary.relaxation_seconds, summary.wall_seconds)});
@@ -133,7 +204,7 @@ int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, co
 }
 
 int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-                    const std::string& output) {
+                    const std::string& output, bool resume) {
   namespace fs = std::filesystem;
   const auto start = Clock::now();
   require_input(
@@ -143,6 +214,7 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
   if (!folder.empty()) create_output_folder(folder.string());
   const auto provenance = provenance_of(context, "consolidate");
   const DemConfig& config = context.config;
+  const auto interrupted = interrupted_input("consolidate", input, resume);
   Simulation simulation = io::from_checkpoint(checkpoint, input, context.comm);
   const double p_before = mean_stress_compression_positive(simulation.stress());
   const StateMeasures before = simulation.measure();
@@ -150,13 +222,20 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
   const double rate =
       strain_rate_for_inertial_number(config.prepare.inertial_number, config.particles.d50,
                                       config.particles.density, config.prepare.confining_pressure);
-  protocol::with_loading_contacts(simulation, config, rate);
-  const protocol::Relaxation relaxed = protocol::consolidate(simulation, config, rate, context.logger);
+  if (!interrupted) protocol::with_loading_contacts(simulation, config, rate);
+  install_stop_handler();
+  const protocol::Relaxation relaxed =
+      protocol::consolidate(simulation, config, rate, context.logger,
+                            {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr});
+  const io::CheckpointLabels labels{checkpoint.rng_state, {}};
+  if (relaxed.interrupted)
+    return stop_relaxation(context, simulation, "consolidate", labels, provenance, output,
+                           *relaxed.interrupted);
   simulation.watch_equilibrium(false);
   SectionTimes writing_times({"output"});
   {
     const ScopedSection writing(writing_times, 0);
-    io::write_checkpoint(output, simulation, {checkpoint.rng_state, {}}, provenance);
+    io::write_checkpoint(output, simulation, labels, provenance);
   }
   const StateMeasures m = simulation.measure();
   context.logger->info(
@@ -177,7 +256,7 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
 // the probes' stiffness assumes (paper section 4), from a checkpoint written at OVAL's looser
 // increment tolerance (docs/paper-comparison.md, section 4).
 int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-              const std::string& output) {
+              const std::string& output, bool resume) {
   namespace fs = std::filesystem;
   const auto start = Clock::now();
   require_input(
@@ -188,17 +267,23 @@ int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, c
   const fs::path folder = fs::path(output).parent_path();
   if (!folder.empty()) create_output_folder(folder.string());
   const auto provenance = provenance_of(context, "relax");
+  const auto interrupted = interrupted_input("relax", input, resume);
   Simulation simulation = io::from_checkpoint(checkpoint, input, context.comm);
   const auto void_ratio = [&] { return simulation.cell().volume() / simulation.solid_volume() - 1.0; };
   const double p_before = mean_stress_compression_positive(simulation.stress());
   const double e_before = void_ratio();
+  install_stop_handler();
   const protocol::Relaxation relaxed = protocol::relax_to_equilibrium(
-      simulation, context.config.equilibrium, context.config.equilibrium.max_steps, context.logger, "relax");
+      simulation, context.config.equilibrium, context.config.equilibrium.max_steps, context.logger, "relax",
+      {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr});
+  const io::CheckpointLabels labels{checkpoint.rng_state, checkpoint.run_id};
+  if (relaxed.interrupted)
+    return stop_relaxation(context, simulation, "relax", labels, provenance, output, *relaxed.interrupted);
   SectionTimes writing_times({"output"});
   h5::Checkpoint result;
   {
     const ScopedSection writing(writing_times, 0);
-    result = io::write_checkpoint(output, simulation, {checkpoint.rng_state, checkpoint.run_id}, provenance);
+    result = io::write_checkpoint(output, simulation, labels, provenance);
   }
   context.logger->info(
       "relax of '{}': {} steps ({} verifying, {} windows left), p {:.6g} -> {:.6g} Pa, void ratio {:.5f} -> "

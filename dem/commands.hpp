@@ -24,8 +24,10 @@ struct CommandContext {
   mpi::Comm comm;
 };
 
-/// prepare: a dense isotropic assembly, written to <output_dir>/prepared.h5.
-int run_prepare(const CommandContext& context);
+/// prepare: a dense isotropic assembly, written to <output_dir>/prepared.h5. Its finished pieces
+/// (dem/io/prepare_pieces.hpp) are kept in <output_dir> until then; on SIGTERM it stops with
+/// exit 143 and `resume` continues from them to the bits of an uninterrupted run.
+int run_prepare(const CommandContext& context, bool resume = false);
 
 struct LoadOptions {
   bool resume = false;    ///< continue the loading run whose checkpoint `input` is
@@ -45,14 +47,17 @@ int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, co
              const HoldOptions& options);
 
 /// relax: the checkpoint relaxed at its own loading control to the verified equilibrium of
-/// dem.equilibrium, written to `output` (never the input).
+/// dem.equilibrium, written to `output` (never the input). On SIGTERM it writes its state to
+/// `output` with _interrupted before the extension and exits 143; `resume` continues from such
+/// a file (`input`) to the bits of an uninterrupted run.
 int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-              const std::string& output);
+              const std::string& output, bool resume = false);
 
 /// consolidate: an assembly from another code (aniso-dem import) consolidated isotropically to
 /// dem.prepare.confining_pressure with the loading's contacts and relaxed to the verified
-/// equilibrium, written to `output` as a prepared assembly that `load` starts from.
+/// equilibrium, written to `output` as a prepared assembly that `load` starts from. SIGTERM and
+/// `resume` as for run_relax.
 int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-                    const std::string& output);
+                    const std::string& output, bool resume = false);
 
 } // namespace aniso::dem

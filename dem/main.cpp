@@ -68,7 +68,9 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   import->fallthrough();
   dem::interop::ExportOptions export_options;
   export_->add_option("--input", export_options.input, "checkpoint (HDF5)")->required();
-  export_->add_option("--format", export_options.format, "lammps (default), xdmf or dempla")
+  export_
+      ->add_option("--format", export_options.format,
+                   "lammps, xdmf or dempla (default: xdmf for an --output ending in .xmf, else lammps)")
       ->check(CLI::IsMember({"lammps", "xdmf", "dempla"}));
   export_->add_option("--output", export_options.output, "LAMMPS data file, .xmf for xdmf, or DEMPLA D-file")
       ->required();
@@ -82,11 +84,16 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   dem::LoadOptions load_options;
   relax->add_option("--input", input, "checkpoint to relax (HDF5)")->required();
   relax->add_option("--output", output, "relaxed checkpoint to write (HDF5; not the input)")->required();
+  bool resume_relaxation = false; // relax and consolidate: continue one stopped on SIGTERM
+  relax->add_flag("--resume", resume_relaxation,
+                  "continue from the _interrupted file of a relax stopped on SIGTERM");
   relax->fallthrough();
   consolidate->add_option("--input", input, "checkpoint to consolidate, e.g. from aniso-dem import (HDF5)")
       ->required();
   consolidate->add_option("--output", output, "prepared assembly to write (HDF5; must not exist)")
       ->required();
+  consolidate->add_flag("--resume", resume_relaxation,
+                        "continue from the _interrupted file of a consolidate stopped on SIGTERM");
   consolidate->fallthrough();
   hold->add_option("--input", input, "checkpoint to hold (HDF5)")->required();
   hold->add_option("--steps", hold_options.steps, "time steps to hold")
@@ -104,6 +111,9 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   load->add_flag(
       "--overwrite", load_options.overwrite,
       "replace the loading run already in dem.output_dir (its history and load_NNN.h5 are removed)");
+  bool resume_prepare = false;
+  prepare->add_flag("--resume", resume_prepare,
+                    "continue a prepare stopped on SIGTERM from the pieces it kept in dem.output_dir");
   prepare->fallthrough();
   load->fallthrough();
   if (auto code = cli::parse(app, argc, argv, comm)) return *code;
@@ -132,7 +142,11 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
                  fmt::format("dem: {} particles on {} rank(s) (at least {:.0f} bytes each)",
                              config.particles.count, comm.size(), min_bytes_per_particle),
                  "lower dem.particles.count or spread the run over more nodes");
-  logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
+  // import and export take their particles from the files they read, not the configuration.
+  if (import->parsed() || export_->parsed())
+    logger->info("configuration is valid");
+  else
+    logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
   if (options.dry_run) return 0;
 
   if (export_->parsed()) return dem::interop::run_export(export_options, logger, comm);
@@ -140,9 +154,10 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   if (hold->parsed()) return dem::run_hold(context, *checkpoint, input, hold_options);
   if (import->parsed())
     return dem::interop::run_import(import_options, config, reader, context.command_line, logger, comm);
-  if (relax->parsed()) return dem::run_relax(context, *checkpoint, input, output);
-  if (consolidate->parsed()) return dem::run_consolidate(context, *checkpoint, input, output);
-  if (prepare->parsed()) return dem::run_prepare(context);
+  if (relax->parsed()) return dem::run_relax(context, *checkpoint, input, output, resume_relaxation);
+  if (consolidate->parsed())
+    return dem::run_consolidate(context, *checkpoint, input, output, resume_relaxation);
+  if (prepare->parsed()) return dem::run_prepare(context, resume_prepare);
   return dem::run_load(context, *checkpoint, input, load_options);
 }
 

@@ -28,6 +28,7 @@ void log_measures(const Logger& logger, const fabric::FabricMeasures& m) {
       m.source, m.strain[0], m.mean_stress, m.deviatoric_stress / m.mean_stress, m.void_ratio, m.coordination,
       m.coordination_no_rattlers, m.n_rattlers, m.chi_paper / static_cast<double>(m.n_particles),
       m.chi_torus / static_cast<double>(m.n_particles));
+  if (m.n_contacts == 0) logger->warn("{}: {}", m.source, fabric::no_contacts_warning);
 }
 
 int run_fabric(int argc, char** argv, const mpi::Comm& comm) {
@@ -60,6 +61,7 @@ int run_fabric(int argc, char** argv, const mpi::Comm& comm) {
   if (is_series)
     require_input(inputs.size() >= 3,
                   "series needs at least 3 checkpoints to correlate, got " + std::to_string(inputs.size()));
+  fabric::require_distinct_stems(inputs);
   if (output.empty()) output = config.output_dir + (is_series ? "/fabric_series.h5" : "/fabric.h5");
   {
     std::vector<std::string> every_input = inputs;

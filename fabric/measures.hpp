@@ -10,9 +10,16 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace aniso::fabric {
+
+/// Stored (attribute "warning") and logged with the results of a checkpoint without contacts, a
+/// valid state (a loose gas) on which every contact measure is 0/0.
+inline constexpr std::string_view no_contacts_warning =
+    "no contacts: the stress ratios, the contact tensors' anisotropies and the correlations that use "
+    "them are undefined (NaN)";
 
 /// One tensor result with what a reader needs to know about it.
 struct NamedTensor {

@@ -5,11 +5,13 @@
 #include "common/root_only.hpp"
 #include "fabric/summary.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <limits>
-#include <set>
+#include <map>
 #include <sstream>
 
 namespace aniso::fabric {
@@ -29,6 +31,19 @@ std::vector<double> row_major(const Mat3& m) {
 
 std::string checkpoint_stem(const std::string& path) {
   return std::filesystem::path(path).stem().string();
+}
+
+void require_distinct_stems(const std::vector<std::string>& paths) {
+  std::map<std::string, std::string> first_with_stem;
+  for (const std::string& path : paths) {
+    const auto [earlier, fresh] = first_with_stem.emplace(checkpoint_stem(path), path);
+    if (fresh) continue;
+    require_input(earlier->second != path,
+                  fmt::format("checkpoint '{}' is given more than once: give each checkpoint once", path));
+    require_input(false, fmt::format("checkpoints '{}' and '{}' share the name '{}' (results are stored by "
+                                     "file name): rename one",
+                                     earlier->second, path, earlier->first));
+  }
 }
 
 std::vector<std::string> column_names() {
@@ -80,6 +95,7 @@ void write_checkpoint_group(h5::Group& checkpoints, const FabricMeasures& m) {
   h5::Group group = checkpoints.create_group(checkpoint_stem(m.source));
   group.write_attribute("source", m.source);
   group.write_attribute("source_hash", m.source_hash);
+  if (m.n_contacts == 0) group.write_attribute("warning", no_contacts_warning);
   for (const NamedScalar& s : m.scalars()) {
     if (s.integer) {
       group.write_attribute<std::int64_t>(s.name, static_cast<std::int64_t>(s.value));
@@ -134,11 +150,10 @@ h5::File create_results_file(const std::string& path, const std::string& descrip
 void write_fabric_results(const std::string& h5_path, const std::string& csv_path,
                           std::span<const FabricMeasures> measures, const h5::Provenance& provenance,
                           const mpi::Comm& comm) {
-  std::set<std::string> stems;
+  std::vector<std::string> sources;
   for (const FabricMeasures& m : measures)
-    require_input(stems.insert(checkpoint_stem(m.source)).second,
-                  "two checkpoints share the name '" + checkpoint_stem(m.source) +
-                      "' (results are stored by file name): rename one");
+    sources.push_back(m.source);
+  require_distinct_stems(sources);
   run_on_root(comm, [&] {
     h5::AtomicFile atomic(h5_path);
     {

@@ -17,6 +17,10 @@ inline constexpr std::int64_t fabric_schema_version = 1;
 /// The group name of a checkpoint: its file name without folder and extension.
 std::string checkpoint_stem(const std::string& path);
 
+/// InputError (exit 2) naming the checkpoints when two inputs share a stem (the results store
+/// one group per stem), before anything is measured.
+void require_distinct_stems(const std::vector<std::string>& paths);
+
 /// CSV header and rows (numbers only, after the source path column), shared with the series table.
 std::vector<std::string> column_names();
 std::vector<std::string> column_units(); ///< the unit of each column, in the same order

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
+#include "common/stop_request.hpp"
 #include "lbm/halo.hpp"
 #include "lbm/petsc_log.hpp"
 #include "lbm/stream_collide.hpp"
@@ -273,6 +274,9 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
       if (s.keep_velocity) result.velocity = gather_velocity(topology, moments, comm);
       break;
     }
+    // SLURM's SIGTERM before a time limit: every rank drops the run at the same check.
+    if (stop_requested(comm))
+      throw Interrupted(fmt::format("{}: stopped on SIGTERM at step {}", s.label, step));
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

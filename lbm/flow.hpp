@@ -12,6 +12,8 @@
 // max_mach, or a drift of the mean density above mass_drift stop the run
 // with NumericalError naming the cause and the remedy. Reaching max_steps
 // first is a ConvergenceError. In neither case is a result returned.
+// SIGTERM: once any rank has received it (stop_requested, polled at every check), every rank
+// throws Interrupted at the same check.
 
 #include "common/log.hpp"
 #include "common/mpi.hpp"

@@ -163,12 +163,9 @@ std::string direction_path(const std::string& output_dir, const std::string& ima
 }
 
 void write_direction(const std::string& path, const std::vector<FlowRun>& runs, int axis,
-                     const h5::VoxelImage& image, const PermeabilitySettings& settings,
-                     const h5::Provenance& provenance) {
-  std::size_t solid = 0;
-  for (std::uint8_t v : image.phase)
-    solid += v;
-  const auto fluid = static_cast<std::int64_t>(image.size() - solid);
+                     const h5::VoxelImage& image, const std::string& image_hash,
+                     const PermeabilitySettings& settings, const h5::Provenance& provenance) {
+  const std::int64_t fluid = fluid_voxels(image);
   h5::AtomicFile atomic(path);
   {
     h5::File file = h5::File::create(atomic.temp_path());
@@ -177,6 +174,7 @@ void write_direction(const std::string& path, const std::vector<FlowRun>& runs, 
     write_common(group, image, settings, settings.method,
                  static_cast<double>(fluid) / static_cast<double>(image.size()), fluid);
     group.write_attribute("axis", std::int64_t{axis});
+    group.write_attribute("image_hash", std::string_view(image_hash));
     write_runs(group, runs);
     file.close();
   }
@@ -207,6 +205,7 @@ DirectionFile read_direction(const std::string& path) {
   d.image.source_hash = group.read_string_attribute("source_hash");
   d.porosity = group.read_attribute<double>("porosity");
   d.fluid_voxels = group.read_attribute<std::int64_t>("fluid_voxels");
+  if (group.has_attribute("image_hash")) d.image_hash = group.read_string_attribute("image_hash");
   const h5::Group runs = group.open_group("runs");
   const auto n = static_cast<hsize_t>(runs.open_dataset("axis").dims().at(0));
   const auto axis = runs.read_dataset<std::int64_t>("axis", {n});

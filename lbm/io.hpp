@@ -45,15 +45,16 @@ struct DirectionFile {
   h5::VoxelImage image; ///< metadata only (no phase): shape, voxel_size, source, source_hash
   double porosity = 0;
   std::int64_t fluid_voxels = 0;
+  std::string image_hash; ///< content hash of the image file itself ("" in files written before it)
 };
 
 /// "<output_dir>/permeability_<stem>_direction<D>.h5".
 std::string direction_path(const std::string& output_dir, const std::string& image_path, int axis);
 
-/// Writes the runs of one direction. Serial (rank 0).
+/// Writes the runs of one direction of the image whose file has content hash `image_hash`. Serial (rank 0).
 void write_direction(const std::string& path, const std::vector<FlowRun>& runs, int axis,
-                     const h5::VoxelImage& image, const PermeabilitySettings& settings,
-                     const h5::Provenance& provenance);
+                     const h5::VoxelImage& image, const std::string& image_hash,
+                     const PermeabilitySettings& settings, const h5::Provenance& provenance);
 
 /// Reads and validates a direction file; FileError naming the file and the problem.
 DirectionFile read_direction(const std::string& path);

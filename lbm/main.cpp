@@ -1,13 +1,16 @@
 // aniso-lbm: D3Q19 lattice Boltzmann permeability tensor of a voxel image (paper section 6).
 #include "common/cli.hpp"
 #include "common/error.hpp"
+#include "common/h5/content_hash.hpp"
 #include "common/h5/image.hpp"
 #include "common/output_folder.hpp"
+#include "common/stop_request.hpp"
 #include "lbm/config.hpp"
 #include "lbm/force_choice.hpp"
 #include "lbm/io.hpp"
 #include "lbm/permeability.hpp"
 #include "lbm/petsc_session.hpp"
+#include "lbm/resume.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -38,22 +41,7 @@ int collect_directions(const std::string& input, const aniso::lbm::LbmConfig& co
     const lbm::DirectionFile& d = files.back();
     const lbm::DirectionFile& first = files.front();
     require_file(d.axis == axis, fmt::format("{}: holds direction {}, expected {}", path, d.axis, axis));
-    // Every setting that changes the numbers: a tensor assembled from runs of different
-    // precision, tolerance or image would look fine and be wrong.
-    const std::vector<std::pair<const char*, bool>> agreements{
-        {"method", d.method == first.method},
-        {"tau", d.settings.flow.tau == first.settings.flow.tau},
-        {"magic", d.settings.flow.magic == first.settings.flow.magic},
-        {"body force", d.settings.body_force == first.settings.body_force},
-        {"precision", d.settings.flow.precision == first.settings.flow.precision},
-        {"convergence tolerance", d.settings.flow.tolerance == first.settings.flow.tolerance},
-        {"voxel size", d.image.voxel_size == first.image.voxel_size},
-        {"source hash", d.image.source_hash == first.image.source_hash},
-        {"porosity", d.porosity == first.porosity && d.fluid_voxels == first.fluid_voxels},
-    };
-    std::string differing;
-    for (const auto& [name, agrees] : agreements)
-      if (!agrees) differing += (differing.empty() ? "" : ", ") + std::string(name);
+    const std::string differing = lbm::differing_settings(d, first);
     require_file(differing.empty(),
                  fmt::format("{}: {} differ(s) from direction 0's ({}); rerun the "
                              "directions with one configuration on one image",
@@ -122,26 +110,54 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   settings.flow.tau = lbm::resolve_tau(image, settings, logger);
   settings.body_force = lbm::resolve_body_force(image, settings, logger);
   const lbm::PetscSession petsc(config.petsc_options);
-  const auto provenance =
-      h5::make_provenance("aniso-lbm", reader.effective_toml(), cli::join_command_line(argc, argv), comm);
+  const std::string command = cli::join_command_line(argc, argv);
+  const auto provenance = h5::make_provenance("aniso-lbm", reader.effective_toml(), command, comm);
+  // SLURM's SIGTERM before a time limit: the flows poll it at their convergence checks (lbm/flow.hpp).
+  install_stop_handler();
+  // Direction files record the image file they ran on, so that a resumed run reuses only its own.
+  const std::string image_hash = h5::content_hash(input, comm);
   if (direction >= 0) {
     // A run that diverges or does not converge throws here: nothing is written.
-    const auto runs = lbm::run_direction(image, settings, direction, comm, logger);
+    std::vector<lbm::FlowRun> runs;
+    try {
+      runs = lbm::run_direction(image, settings, direction, comm, logger);
+    } catch (const Interrupted& stop) {
+      logger->warn("{}: nothing written; the same command runs the flows along x{} anew: {}", stop.what(),
+                   direction + 1, command);
+      return static_cast<int>(ExitCode::interrupted);
+    }
     const std::string direction_file = lbm::direction_path(config.output_dir, input, direction);
     if (comm.is_root()) {
       create_output_folder(config.output_dir);
-      lbm::write_direction(direction_file, runs, direction, image, settings, provenance);
+      lbm::write_direction(direction_file, runs, direction, image, image_hash, settings, provenance);
       logger->info("wrote {}", direction_file);
     }
     comm.barrier();
     return 0;
   }
-  // A run that diverges or does not converge throws here: nothing is written.
-  const lbm::PermeabilityResult result = lbm::compute_permeability(image, settings, comm, logger);
+  // Velocity fields are not kept in direction files: with them every direction runs each time.
+  const bool resumable = !config.write_velocity;
+  const lbm::DirectionRuns finished = resumable ? lbm::finished_directions(config.output_dir, input, image,
+                                                                           image_hash, settings, comm, logger)
+                                                : lbm::DirectionRuns{};
+  // A run that diverges or does not converge throws here: nothing more is written.
+  lbm::DirectionRuns runs = lbm::run_directions(image, settings, comm, logger, finished);
+  if (std::any_of(runs.begin(), runs.end(), [](const auto& axis) { return !axis; })) {
+    if (resumable) {
+      if (comm.is_root()) create_output_folder(config.output_dir);
+      lbm::keep_directions(config.output_dir, input, image, image_hash, settings, runs, finished, provenance,
+                           comm);
+    }
+    logger->warn("{}", lbm::stop_message(config.output_dir, input, runs, resumable, command));
+    comm.barrier();
+    return static_cast<int>(ExitCode::interrupted);
+  }
+  const lbm::PermeabilityResult result = lbm::permeability_of(image, settings, std::move(runs));
   log_tensor(result, image.voxel_size, logger);
   if (comm.is_root()) {
     create_output_folder(config.output_dir);
     lbm::write_permeability(path, result, image, settings, provenance);
+    lbm::remove_finished(config.output_dir, input, finished, comm);
     logger->info("wrote {}", path);
     if (config.write_velocity) {
       const std::string velocity_path = lbm::result_path(config.output_dir, "velocity", input);

@@ -187,25 +187,55 @@ PermeabilityResult assemble_permeability(Method method, std::vector<FlowRun> run
   return result;
 }
 
-PermeabilityResult compute_permeability(const h5::VoxelImage& image, const PermeabilitySettings& settings,
-                                        const mpi::Comm& comm, const Logger& logger) {
+DirectionRuns run_directions(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                             const mpi::Comm& comm, const Logger& logger, const DirectionRuns& finished) {
   require_input(settings.body_force > 0, "lbm.body_force must be positive");
+  DirectionRuns runs = finished;
+  try {
+    for (int axis = 0; axis < 3; ++axis) {
+      auto& slot = runs[static_cast<std::size_t>(axis)];
+      if (!slot) slot = run_direction(image, settings, axis, comm, logger);
+    }
+  } catch (const Interrupted& stop) {
+    logger->debug("{}", stop.what()); // every rank stops at the same check; later axes stay empty
+  }
+  return runs;
+}
+
+std::int64_t fluid_voxels(const h5::VoxelImage& image) {
+  std::size_t solid = 0;
+  for (std::uint8_t v : image.phase)
+    solid += v;
+  return static_cast<std::int64_t>(image.size() - solid);
+}
+
+PermeabilityResult permeability_of(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                                   DirectionRuns directions) {
   std::vector<FlowRun> runs;
   std::vector<std::vector<double>> velocity;
-  for (int axis = 0; axis < 3; ++axis)
-    for (FlowRun& run : run_direction(image, settings, axis, comm, logger)) {
+  for (int axis = 0; axis < 3; ++axis) {
+    auto& slot = directions[static_cast<std::size_t>(axis)];
+    require_input(slot.has_value(), fmt::format("the flows along x{} are missing", axis + 1));
+    for (FlowRun& run : *slot) {
       if (settings.flow.keep_velocity) velocity.push_back(std::move(run.result.velocity));
       run.result.velocity.clear();
       runs.push_back(std::move(run));
     }
+  }
   PermeabilityResult result = assemble_permeability(settings.method, std::move(runs), settings);
   result.velocity = std::move(velocity);
-  std::size_t solid = 0;
-  for (std::uint8_t v : image.phase)
-    solid += v;
-  result.fluid_voxels = static_cast<std::int64_t>(image.size() - solid);
+  result.fluid_voxels = fluid_voxels(image);
   result.porosity = static_cast<double>(result.fluid_voxels) / static_cast<double>(image.size());
   return result;
+}
+
+PermeabilityResult compute_permeability(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                                        const mpi::Comm& comm, const Logger& logger) {
+  DirectionRuns runs = run_directions(image, settings, comm, logger);
+  for (int axis = 0; axis < 3; ++axis)
+    if (!runs[static_cast<std::size_t>(axis)])
+      throw Interrupted(fmt::format("stopped on SIGTERM before the flows along x{} were done", axis + 1));
+  return permeability_of(image, settings, std::move(runs));
 }
 
 } // namespace aniso::lbm

@@ -21,7 +21,9 @@
 #include "common/tensor.hpp"
 #include "lbm/flow.hpp"
 
+#include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,7 +82,26 @@ std::vector<FlowRun> run_direction(const h5::VoxelImage& image, const Permeabili
 PermeabilityResult assemble_permeability(Method method, std::vector<FlowRun> runs,
                                          const PermeabilitySettings& settings);
 
-/// Runs the method's flows on the image (collective; identical image on every rank; PETSc initialized).
+/// The runs of each axis (run_direction), empty where not (yet) done.
+using DirectionRuns = std::array<std::optional<std::vector<FlowRun>>, 3>;
+
+/// Runs the directions that `finished` lacks and returns them with the finished ones (collective;
+/// identical image on every rank; PETSc initialized). Once any rank has received SIGTERM (polled at
+/// each convergence check) the direction in progress is dropped and no other started: the
+/// directions not done stay empty.
+DirectionRuns run_directions(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                             const mpi::Comm& comm, const Logger& logger, const DirectionRuns& finished = {});
+
+/// The tensor of all three directions' runs, with the image's porosity and (keep_velocity) the
+/// runs' velocity fields; InputError if a direction is missing.
+PermeabilityResult permeability_of(const h5::VoxelImage& image, const PermeabilitySettings& settings,
+                                   DirectionRuns runs);
+
+/// Void voxels of the image.
+std::int64_t fluid_voxels(const h5::VoxelImage& image);
+
+/// Runs the method's flows on the image (collective; identical image on every rank; PETSc
+/// initialized); Interrupted on SIGTERM.
 PermeabilityResult compute_permeability(const h5::VoxelImage& image, const PermeabilitySettings& settings,
                                         const mpi::Comm& comm, const Logger& logger);
 

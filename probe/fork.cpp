@@ -1,6 +1,7 @@
 #include "probe/fork.hpp"
 
 #include "common/error.hpp"
+#include "common/stop_request.hpp"
 #include "dem/io/checkpoint.hpp"
 #include "dem/io/parameters.hpp"
 #include "dem/model/cell_control.hpp"
@@ -42,20 +43,54 @@ Vec3 log_strain_from(const dem::Simulation& simulation, const Vec3& start_length
   return simulation.cell().lengths().cwiseQuotient(start_lengths).array().log().matrix();
 }
 
+// SIGTERM is polled (collectively on the fork's ranks) once per this many steps: within seconds at
+// paper size, and at no measurable cost. A stopped fork is dropped whole and run anew later.
+constexpr std::int64_t stop_poll_steps = 100;
+
+class StopPoll {
+public:
+  StopPoll(const dem::Simulation& simulation, int fork) : simulation_(simulation), fork_(fork) {}
+  /// Throws Interrupted on every rank of the fork once any has received SIGTERM, at most every
+  /// stop_poll_steps steps.
+  void operator()() {
+    if (simulation_.step_count() < next_) return;
+    next_ = simulation_.step_count() + stop_poll_steps;
+    if (stop_requested(simulation_.comm()))
+      throw Interrupted(
+          fmt::format("fork {} stopped on SIGTERM at step {}", fork_, simulation_.step_count()));
+  }
+
+private:
+  const dem::Simulation& simulation_;
+  int fork_;
+  std::int64_t next_ = 0;
+};
+
+// `n` steps of `phase`, polling for SIGTERM between chunks (the same steps as one advance(n)).
+void advance_polling(dem::protocol::Phase& phase, std::int64_t n, StopPoll& poll) {
+  for (std::int64_t done = 0; done < n;) {
+    poll();
+    const std::int64_t chunk = std::min(stop_poll_steps, n - done);
+    phase.advance(chunk);
+    done += chunk;
+  }
+}
+
 // Half an increment at `rate` on `axis` (every other strain held, no servo), then a hold of the
 // cell; returns the stresses of the hold's last window.
 std::vector<Mat3> half_increment(dem::Simulation& simulation, int axis, double rate, std::int64_t half_steps,
-                                 const ProbeConfig& config) {
+                                 const ProbeConfig& config, StopPoll& poll) {
   dem::protocol::Phase phase(simulation, "half increment", half_steps + config.hold_steps);
   Vec3 rates = Vec3::Zero();
   rates[axis] = rate;
   simulation.set_control(dem::model::strain_controlled(simulation.control(), rates));
-  phase.advance(half_steps);
+  advance_polling(phase, half_steps, poll);
   simulation.set_control(dem::model::fixed_cell(simulation.control()));
-  phase.advance(config.hold_steps - config.window_steps);
+  advance_polling(phase, config.hold_steps - config.window_steps, poll);
   // stress() is fresh at every control update; those in the last window are the reading.
   std::vector<Mat3> samples;
   while (!phase.budget_spent()) {
+    poll();
     phase.advance_to_update();
     if (simulation.at_control_update()) samples.push_back(simulation.stress());
   }
@@ -118,9 +153,10 @@ ForkResult run_fork(const h5::Checkpoint& checkpoint, const std::string& path, i
   result.contacts_start = before.contacts;
   result.sliding_start = before.sliding;
 
-  result.samples_half = half_increment(simulation, spec.axis, applied, half_steps, config);
+  StopPoll poll(simulation, index);
+  result.samples_half = half_increment(simulation, spec.axis, applied, half_steps, config, poll);
   result.strain_half = log_strain_from(simulation, start_lengths);
-  result.samples_final = half_increment(simulation, spec.axis, applied, half_steps, config);
+  result.samples_final = half_increment(simulation, spec.axis, applied, half_steps, config, poll);
   result.strain_final = log_strain_from(simulation, start_lengths);
   const ContactCount after = count_contacts(simulation);
   result.contacts_final = after.contacts;

@@ -69,7 +69,8 @@ Mat3 mean_of(const std::vector<Mat3>& samples);
 
 /// Runs fork `index` from `checkpoint` (read from `path`) on `comm` (collective; every rank
 /// passes the whole checkpoint). The same inputs give the same bits on any number of ranks.
-/// With `times`, adds the fork's wall time to it.
+/// With `times`, adds the fork's wall time to it. Once any rank of `comm` has received SIGTERM
+/// (polled every 100 steps), throws Interrupted on all of them: the fork is dropped.
 ForkResult run_fork(const h5::Checkpoint& checkpoint, const std::string& path, int index,
                     const ProbeConfig& config, const mpi::Comm& comm, const Logger& logger,
                     ForkTimes* times = nullptr);

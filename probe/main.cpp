@@ -5,17 +5,21 @@
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
+#include "common/h5/content_hash.hpp"
 #include "common/output_folder.hpp"
+#include "common/stop_request.hpp"
 #include "common/timer.hpp"
 #include "dem/protocol/run_timing.hpp"
 #include "probe/collect.hpp"
 #include "probe/config.hpp"
 #include "probe/files.hpp"
+#include "probe/resume.hpp"
 #include "probe/schedule.hpp"
 #include "probe/source.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -101,7 +105,7 @@ int run_probe(int argc, char** argv, const mpi::Comm& comm) {
                    fmt::format("fork file '{}' does not exist", path));
       files.push_back(probe::read_fork_file(path));
     }
-    const auto forks = probe::check_forks(files, fork_files, probe::shared_content_hash(input, comm));
+    const auto forks = probe::check_forks(files, fork_files, h5::content_hash(input, comm));
     logger->info("seven forks of '{}' agree (content hash {})", input, forks[0].source.hash);
     if (options.dry_run) return 0;
     std::string warning;
@@ -112,6 +116,8 @@ int run_probe(int argc, char** argv, const mpi::Comm& comm) {
     return 0;
   }
 
+  // SLURM's SIGTERM before a time limit: the forks poll it (probe/fork.hpp).
+  install_stop_handler();
   const auto start = SectionTimes::Clock::now();
   const h5::Checkpoint checkpoint = h5::read_checkpoint(input, comm);
   const probe::ProbeSource probe_source = probe::probe_source(input, checkpoint, comm);
@@ -125,8 +131,15 @@ int run_probe(int argc, char** argv, const mpi::Comm& comm) {
   SectionTimes output({"output"});
   if (fork->parsed()) {
     const auto provenance = h5::make_provenance("aniso-probe fork", reader.effective_toml(), command, comm);
-    const probe::ForkFile file{probe_source, probe::fork_settings(config),
-                               probe::run_fork(checkpoint, input, fork_index, config, comm, logger, &times)};
+    std::optional<probe::ForkResult> done;
+    try {
+      done = probe::run_fork(checkpoint, input, fork_index, config, comm, logger, &times);
+    } catch (const Interrupted& stop) {
+      logger->warn("{}: nothing written; the same command runs fork {} anew: {}", stop.what(), fork_index,
+                   command);
+      return static_cast<int>(ExitCode::interrupted);
+    }
+    const probe::ForkFile file{probe_source, probe::fork_settings(config), *done};
     const std::string path = probe::fork_path(config.output_dir, input, fork_index);
     {
       const ScopedSection writing(output, 0);
@@ -135,15 +148,24 @@ int run_probe(int argc, char** argv, const mpi::Comm& comm) {
     logger->info("wrote {}", path);
   } else {
     const auto provenance = h5::make_provenance("aniso-probe run", reader.effective_toml(), command, comm);
-    const auto results = probe::run_all_forks(checkpoint, input, config, comm, logger, &times);
+    const probe::ForkSettings settings = probe::fork_settings(config);
+    const auto finished =
+        probe::finished_forks(config.output_dir, input, probe_source, settings, comm, logger);
+    const auto results = probe::run_forks(checkpoint, input, config, comm, logger, &times, finished);
+    if (std::any_of(results.begin(), results.end(), [](const auto& done) { return !done; })) {
+      probe::keep_forks(config.output_dir, input, probe_source, settings, results, finished, provenance,
+                        comm);
+      logger->warn("{}", probe::stop_message(config.output_dir, input, results, command));
+      return static_cast<int>(ExitCode::interrupted);
+    }
     std::array<probe::ForkFile, probe::n_fork_files> forks;
     for (int k = 0; k < probe::n_fork_files; ++k)
-      forks[static_cast<std::size_t>(k)] = {probe_source, probe::fork_settings(config),
-                                            results[static_cast<std::size_t>(k)]};
+      forks[static_cast<std::size_t>(k)] = {probe_source, settings, *results[static_cast<std::size_t>(k)]};
     std::string warning;
     const probe::ProbeResult result = probe::assemble_result(forks, config, warning);
     const ScopedSection writing(output, 0);
     write_result(result_file, result, provenance, warning, logger, comm);
+    probe::remove_finished(config.output_dir, input, finished, comm);
   }
   // The table: the engine's sections over this rank's forks, then restarting and writing.
   SectionTimes probe_times({"restart", "output"});

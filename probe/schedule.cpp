@@ -2,6 +2,8 @@
 
 #include "common/error.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstring>
 #include <vector>
@@ -36,12 +38,12 @@ std::vector<double> fields_of(const ForkResult& f) {
 
 } // namespace
 
-int fork_group_count(int n_ranks) {
-  return std::min(n_ranks, n_fork_files);
+int fork_group_count(int n_ranks, int n_to_run) {
+  return std::max(1, std::min(n_ranks, n_to_run));
 }
 
-int fork_group_of_rank(int rank, int n_ranks) {
-  return static_cast<int>(static_cast<std::int64_t>(rank) * fork_group_count(n_ranks) / n_ranks);
+int fork_group_of_rank(int rank, int n_ranks, int n_to_run) {
+  return static_cast<int>(static_cast<std::int64_t>(rank) * fork_group_count(n_ranks, n_to_run) / n_ranks);
 }
 
 std::vector<char> pack_fork(const ForkResult& fork) {
@@ -85,31 +87,58 @@ ForkResult unpack_fork(const std::vector<char>& bytes) {
   return f;
 }
 
+ForkResults run_forks(const h5::Checkpoint& checkpoint, const std::string& path, const ProbeConfig& config,
+                      const mpi::Comm& comm, const Logger& logger, ForkTimes* times,
+                      const ForkResults& finished) {
+  std::vector<int> pending;
+  for (int index = 0; index < n_fork_files; ++index)
+    if (!finished[static_cast<std::size_t>(index)]) pending.push_back(index);
+  ForkResults results = finished;
+  if (pending.empty()) return results;
+  const int n_ranks = comm.size();
+  const auto n_pending = static_cast<int>(pending.size());
+  const int groups = fork_group_count(n_ranks, n_pending);
+  const int group = fork_group_of_rank(comm.rank(), n_ranks, n_pending);
+  mpi::Comm group_comm = comm.split(group, comm.rank());
+  try {
+    for (int k = group; k < n_pending; k += groups) {
+      const int index = pending[static_cast<std::size_t>(k)];
+      results[static_cast<std::size_t>(index)] =
+          run_fork(checkpoint, path, index, config, group_comm, logger, times);
+    }
+  } catch (const Interrupted& stop) {
+    logger->debug("{}", stop.what()); // the group's ranks agree; its later forks stay empty
+  }
+  group_comm.free();
+  // The lowest world rank of each group holds its results; it broadcasts them to everyone (no
+  // bytes: the fork was not done).
+  for (int k = 0; k < n_pending; ++k) {
+    const int index = pending[static_cast<std::size_t>(k)];
+    const int owner_group = k % groups;
+    int owner = 0;
+    while (fork_group_of_rank(owner, n_ranks, n_pending) != owner_group)
+      ++owner;
+    auto& slot = results[static_cast<std::size_t>(index)];
+    std::vector<char> bytes;
+    if (comm.rank() == owner && slot) bytes = pack_fork(*slot);
+    comm.broadcast(bytes, owner);
+    slot.reset();
+    if (!bytes.empty()) slot = unpack_fork(bytes);
+  }
+  return results;
+}
+
 std::array<ForkResult, n_fork_files> run_all_forks(const h5::Checkpoint& checkpoint, const std::string& path,
                                                    const ProbeConfig& config, const mpi::Comm& comm,
                                                    const Logger& logger, ForkTimes* times) {
-  const int n_ranks = comm.size();
-  const int groups = fork_group_count(n_ranks);
-  const int group = fork_group_of_rank(comm.rank(), n_ranks);
-  mpi::Comm group_comm = comm.split(group, comm.rank());
-  std::array<ForkResult, n_fork_files> results;
-  for (int index = group; index < n_fork_files; index += groups) {
-    results[static_cast<std::size_t>(index)] =
-        run_fork(checkpoint, path, index, config, group_comm, logger, times);
-  }
-  group_comm.free();
-  // The lowest world rank of each group holds its results; it broadcasts them to everyone.
+  const ForkResults results = run_forks(checkpoint, path, config, comm, logger, times, {});
+  std::array<ForkResult, n_fork_files> all;
   for (int index = 0; index < n_fork_files; ++index) {
-    const int owner_group = index % groups;
-    int owner = 0;
-    while (fork_group_of_rank(owner, n_ranks) != owner_group)
-      ++owner;
-    std::vector<char> bytes;
-    if (comm.rank() == owner) bytes = pack_fork(results[static_cast<std::size_t>(index)]);
-    comm.broadcast(bytes, owner);
-    results[static_cast<std::size_t>(index)] = unpack_fork(bytes);
+    const auto& slot = results[static_cast<std::size_t>(index)];
+    if (!slot) throw Interrupted(fmt::format("fork {} stopped on SIGTERM", index));
+    all[static_cast<std::size_t>(index)] = *slot;
   }
-  return results;
+  return all;
 }
 
 } // namespace aniso::probe

@@ -2,24 +2,12 @@
 
 #include "common/h5/content_hash.hpp"
 
-#include <vector>
-
 namespace aniso::probe {
-
-std::string shared_content_hash(const std::string& path, const mpi::Comm& comm) {
-  std::vector<char> bytes;
-  if (comm.is_root()) {
-    const std::string hash = h5::content_hash(path);
-    bytes.assign(hash.begin(), hash.end());
-  }
-  comm.broadcast(bytes, 0);
-  return {bytes.begin(), bytes.end()};
-}
 
 ProbeSource probe_source(const std::string& path, const h5::Checkpoint& checkpoint, const mpi::Comm& comm) {
   ProbeSource source;
   source.path = path;
-  source.hash = shared_content_hash(path, comm);
+  source.hash = h5::content_hash(path, comm);
   source.cell_strain = (checkpoint.cell.lengths - checkpoint.cell.reference_lengths)
                            .cwiseQuotient(checkpoint.cell.reference_lengths);
   // A prepared assembly (every axis stress-servoed: isotropic consolidation) has not been loaded;

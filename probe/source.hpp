@@ -12,7 +12,4 @@ namespace aniso::probe {
 /// Hash computed on rank 0 and broadcast (collective).
 ProbeSource probe_source(const std::string& path, const h5::Checkpoint& checkpoint, const mpi::Comm& comm);
 
-/// content_hash(path) computed on rank 0 and broadcast (collective).
-std::string shared_content_hash(const std::string& path, const mpi::Comm& comm);
-
 } // namespace aniso::probe

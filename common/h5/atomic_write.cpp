@@ -2,12 +2,16 @@
 
 #include "common/error.hpp"
 
+#include <array>
+#include <cctype>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -24,13 +28,50 @@ std::string system_error(const std::string& what) {
   return what + ": " + std::strerror(errno);
 }
 
-// Creates ".<name>.tmp-XXXXXX" in the final file's folder (same file system, so rename is atomic).
-// Returns the path, or throws FileError.
+// This host's name as it appears in temporaries' names: letters, digits, '.', '_' and '-' only.
+std::string host_tag() {
+  std::array<char, 256> name{};
+  if (gethostname(name.data(), name.size() - 1) != 0) return "unknown";
+  std::string tag(name.data());
+  for (char& c : tag)
+    if (std::isalnum(static_cast<unsigned char>(c)) == 0 && c != '.' && c != '_' && c != '-') c = '_';
+  return tag.empty() ? "unknown" : tag.substr(0, 64);
+}
+
+// The pid in "<pid>-XXXXXX" (the end of a temporary's name after its host), or 0 if it is not one.
+pid_t pid_of(const std::string& rest) {
+  const std::size_t dash = rest.find('-');
+  if (dash == 0 || dash == std::string::npos || dash > 10 || rest.size() != dash + 7) return 0;
+  for (std::size_t k = 0; k < rest.size(); ++k) {
+    const auto c = static_cast<unsigned char>(rest[k]);
+    if (k < dash ? std::isdigit(c) == 0 : (k > dash && std::isalnum(c) == 0)) return 0;
+  }
+  const long long pid = std::stoll(rest.substr(0, dash));
+  return pid <= std::numeric_limits<pid_t>::max() ? static_cast<pid_t>(pid) : 0;
+}
+
+// Removes the temporaries of this final file that a process of this host left when it died (kill -9,
+// a node's time limit): their pid no longer exists. Those of live processes, of other hosts (whose
+// pids mean nothing here) and of the older unnamed form are left alone.
+void remove_stale_temporaries(const std::filesystem::path& folder, const std::string& prefix) {
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const pid_t pid = pid_of(name.substr(prefix.size()));
+    if (pid > 0 && kill(pid, 0) != 0 && errno == ESRCH) std::filesystem::remove(entry.path(), error);
+  }
+}
+
+// Creates ".<name>.tmp-<host>-<pid>-XXXXXX" in the final file's folder (same file system, so rename is
+// atomic), first removing stale temporaries of the same name. Returns the path, or throws FileError.
 std::string create_temporary(const std::string& final_path) {
   const std::filesystem::path final_name = std::filesystem::path(final_path).filename();
   if (final_name.empty()) throw FileError(final_path + ": not a file name");
-  std::string pattern =
-      (std::filesystem::path(folder_of(final_path)) / ("." + final_name.string() + ".tmp-XXXXXX")).string();
+  const std::filesystem::path folder(folder_of(final_path));
+  const std::string prefix = "." + final_name.string() + ".tmp-" + host_tag() + "-";
+  remove_stale_temporaries(folder, prefix);
+  std::string pattern = (folder / (prefix + std::to_string(getpid()) + "-XXXXXX")).string();
   const int descriptor = mkstemp(pattern.data());
   if (descriptor < 0)
     throw FileError(final_path + ": " +

@@ -3,8 +3,10 @@
 // temporary name in its final folder, flushed to disk, and renamed over the
 // final name only when complete. A crash at any point leaves either the old
 // file or the new one under the final name, never a partial file. A crash may
-// leave a stale temporary (".<name>.tmp-XXXXXX"); it never affects the final
-// file and may be deleted at any time.
+// leave a stale temporary (".<name>.tmp-<host>-<pid>-XXXXXX"); it never affects
+// the final file, and the next atomic write of the same file removes it once no
+// process of that pid lives on this host (those of other hosts stay: their pids
+// mean nothing here; delete them by hand once their job has ended).
 
 #include "common/mpi.hpp"
 

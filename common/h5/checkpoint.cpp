@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/h5/atomic_write.hpp"
 #include "common/h5/file.hpp"
+#include "common/h5/particle_separation.hpp"
 
 #include <fmt/format.h>
 
@@ -636,6 +637,10 @@ Checkpoint read_file(const std::string& path) {
   const RowLabel row = [](std::size_t k) { return "row " + std::to_string(k); };
   const auto pairs = std::span<const Key>(checkpoint.contacts.particles);
   Problem problem = first_of({
+      [&]() -> Problem {
+        if (checkpoint.particles.size() == 0) return "/particles: no particles";
+        return std::nullopt;
+      },
       [&] { return check_run_state(checkpoint); },
       [&] { return check_cell(checkpoint.cell); },
       [&] { return check_particles(checkpoint.particles, row); },
@@ -649,6 +654,17 @@ Checkpoint read_file(const std::string& path) {
         return std::nullopt;
       },
       [&] { return check_contact_values(checkpoint.contacts, row); },
+      [&]() -> Problem {
+        // Older files without the limit: only what no limit allows (one body inside another).
+        const double limit = has_parameter(checkpoint, "explosion_overlap")
+                                 ? parameter(checkpoint, "explosion_overlap", path)
+                                 : 1.0;
+        const ParticleRows& p = checkpoint.particles;
+        if (auto pair = deepest_impossible_overlap(p.position, p.diameter, p.aspect_ratio,
+                                                   checkpoint.cell.lengths, limit))
+          return "/particles/position: " + *pair + ": no DEM run reaches this state";
+        return std::nullopt;
+      },
   });
   if (problem) throw FileError(path + ": " + *problem);
   return checkpoint;

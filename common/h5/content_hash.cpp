@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <vector>
 
 namespace aniso::h5 {
 namespace {
@@ -46,6 +47,16 @@ std::string content_hash(const std::string& path) {
   }
   if (in.bad()) throw FileError(fmt::format("{}: read error while hashing", path));
   return hex(hash);
+}
+
+std::string content_hash(const std::string& path, const mpi::Comm& comm) {
+  std::vector<char> bytes;
+  if (comm.is_root()) {
+    const std::string hash = content_hash(path);
+    bytes.assign(hash.begin(), hash.end());
+  }
+  comm.broadcast(bytes, 0);
+  return {bytes.begin(), bytes.end()};
 }
 
 } // namespace aniso::h5

@@ -2,6 +2,8 @@
 
 #include "common/error.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <numeric>
@@ -530,8 +532,32 @@ void Dataset::write_local_rows(const RowSelection& rows, std::span<const T> data
     fail("write failed");
 }
 
+void Dataset::check_stored_size() const {
+  const Handle type(H5Dget_type(id()), H5Tclose);
+  const Handle creation(H5Dget_create_plist(id()), H5Pclose);
+  if (!type.valid() || !creation.valid()) fail("cannot read the dataset's type or layout");
+  // Only a compressing filter may store fewer bytes than the data hold (Fletcher32 adds four).
+  const int n_filters = H5Pget_nfilters(creation.get());
+  for (int k = 0; k < n_filters; ++k) {
+    unsigned flags = 0;
+    std::size_t n_values = 0;
+    unsigned config = 0;
+    if (H5Pget_filter2(creation.get(), static_cast<unsigned>(k), &flags, &n_values, nullptr, 0, nullptr,
+                       &config) != H5Z_FILTER_FLETCHER32)
+      return;
+  }
+  const double claimed =
+      static_cast<double>(product(dims(), 0)) * static_cast<double>(H5Tget_size(type.get()));
+  const auto stored = static_cast<double>(H5Dget_storage_size(id()));
+  if (claimed > stored)
+    fail(fmt::format(
+        "shape {} claims {:.4g} bytes but the file stores {:.4g} bytes of it: the file is damaged",
+        format_dims(dims()), claimed, stored));
+}
+
 template <Element T> std::vector<T> Dataset::read() const {
   check_stored_type<T>();
+  check_stored_size();
   std::vector<T> values(product(dims(), 0));
   if (!values.empty() && H5Dread(id(), memory_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
     fail_read();

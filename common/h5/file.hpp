@@ -168,6 +168,9 @@ private:
   friend class Group;
   using Object::Object;
   template <Element T> void check_stored_type() const;
+  /// FileError when the dataset claims more elements than the file stores bytes for (a damaged
+  /// header, e.g. 1e12 rows in a 200 kB file), before anything that size is allocated.
+  void check_stored_size() const;
   /// Throws the FileError of a failed read; a failed checksum is named as damage to the file.
   [[noreturn]] void fail_read() const;
   /// Writes rows already on this rank through one hyperslab union; collective in a parallel file.

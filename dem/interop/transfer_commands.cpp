@@ -82,7 +82,27 @@ int run_import(const ImportOptions& options, DemConfig& config, config::Reader& 
   return 0;
 }
 
-int run_export(const ExportOptions& options, const Logger& logger, const mpi::Comm& comm) {
+namespace {
+
+// The format a --format names, or that the output's name implies; a text format under a name
+// that says XDMF or HDF5 is refused, so that no file holds other content than its name says
+// (the XDMF writer itself insists on ".xmf").
+std::string export_format(const ExportOptions& options) {
+  const std::string extension = std::filesystem::path(options.output).extension().string();
+  if (options.format.empty()) return extension == ".xmf" ? "xdmf" : "lammps";
+  require_input(options.format == "xdmf" || (extension != ".xmf" && extension != ".h5"),
+                fmt::format("export: --format {} writes a text file, but --output '{}' is named as {}: give "
+                            "another name{}",
+                            options.format, options.output, extension == ".xmf" ? "XDMF" : "HDF5",
+                            extension == ".xmf" ? ", or --format xdmf (or no --format) for ParaView" : ""));
+  return options.format;
+}
+
+} // namespace
+
+int run_export(const ExportOptions& given, const Logger& logger, const mpi::Comm& comm) {
+  ExportOptions options = given;
+  options.format = export_format(given);
   require_input(options.format == "lammps" || options.format == "xdmf" || options.format == "dempla",
                 fmt::format("export: --format '{}': expected lammps (data file, and with --contacts a "
                             "`dump local` of the contact forces), xdmf (particles and force chains for "

@@ -25,10 +25,10 @@ struct ImportOptions {
 };
 
 struct ExportOptions {
-  std::string input;             ///< checkpoint
-  std::string format = "lammps"; ///< "lammps", "xdmf" or "dempla"
-  std::string output;            ///< data file or .xmf
-  std::string contacts;          ///< lammps: also write the contacts as a `dump local` file here
+  std::string input;    ///< checkpoint
+  std::string format;   ///< "lammps", "xdmf" or "dempla"; empty: xdmf for a .xmf output, else lammps
+  std::string output;   ///< data file or .xmf
+  std::string contacts; ///< lammps: also write the contacts as a `dump local` file here
 };
 
 /// Reads the other code's files, writes the checkpoint (collective) and logs what was matched.

@@ -67,6 +67,10 @@ RunFolderLock::~RunFolderLock() {
 
 std::vector<std::string> loading_run_files(const std::string& folder) {
   static const std::regex pattern(R"(history\.(h5|csv)|load_(\d{3,}|interrupted)\.h5)");
+  return files_matching(folder, pattern);
+}
+
+std::vector<std::string> files_matching(const std::string& folder, const std::regex& pattern) {
   std::vector<std::string> names;
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(folder, error)) {

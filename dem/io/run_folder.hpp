@@ -4,6 +4,7 @@
 
 #include "common/mpi.hpp"
 
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ private:
 
 /// The files of a loading run in folder: history.h5, history.csv, load_NNN.h5, load_interrupted.h5.
 std::vector<std::string> loading_run_files(const std::string& folder);
+
+/// The names of the files in `folder` (not below it) that match `pattern` whole, sorted; none if
+/// the folder does not exist.
+std::vector<std::string> files_matching(const std::string& folder, const std::regex& pattern);
 
 /// Before a fresh loading into folder: InputError on every rank naming the files of an earlier
 /// loading run there, or with overwrite, removes them (so that no file of the old run remains

@@ -25,6 +25,10 @@ Fire::Fire(Simulation& simulation, double max_step_factor)
       max_step_(std::min(max_step_factor * min_step_, simulation.critical_time_step())), alpha_(alpha_start) {
 }
 
+Fire::Fire(Simulation& simulation, const FireState& state)
+    : simulation_(simulation), min_step_(state.min_step), max_step_(state.max_step), alpha_(state.alpha),
+      n_downhill_(state.n_downhill), stops_(state.stops) {}
+
 void Fire::set_time_step(double time_step) {
   if (time_step == simulation_.settings().time_step) return;
   SimulationSettings settings = simulation_.settings();

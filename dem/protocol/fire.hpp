@@ -21,11 +21,22 @@
 
 namespace aniso::dem::protocol {
 
+/// FIRE's state between two steps: an interrupted minimisation continues from it.
+struct FireState {
+  double min_step = 0; ///< [s]
+  double max_step = 0; ///< [s]
+  double alpha = 0;
+  int n_downhill = 0;
+  std::int64_t stops = 0;
+};
+
 class Fire {
 public:
   /// FIRE over `simulation`, whose time step now is the smallest it takes; the largest is
   /// `max_step_factor` times that, and below the Rayleigh step.
   Fire(Simulation& simulation, double max_step_factor);
+  /// FIRE continued from `state` (the time step it had is the simulation's own now).
+  Fire(Simulation& simulation, const FireState& state);
 
   /// After every time step: steers the velocities toward the forces while the power is positive,
   /// else stops every particle (collective: one exact reduction of three sums).
@@ -34,6 +45,7 @@ public:
   void end() { set_time_step(min_step_); }
   /// Times the particles were stopped.
   [[nodiscard]] std::int64_t n_stops() const { return stops_; }
+  [[nodiscard]] FireState state() const { return {min_step_, max_step_, alpha_, n_downhill_, stops_}; }
 
 private:
   void set_time_step(double time_step);

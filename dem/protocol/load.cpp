@@ -5,6 +5,7 @@
 #include "dem/io/checkpoint.hpp"
 #include "dem/io/history.hpp"
 #include "dem/io/parameters.hpp"
+#include "dem/io/relaxation_state.hpp"
 #include "dem/measures.hpp"
 #include "dem/protocol/phase.hpp"
 #include "dem/protocol/rates.hpp"
@@ -77,7 +78,7 @@ io::HistoryRow history_row(const Simulation& simulation, const DemConfig& config
 // The history a resumed run continues must be its own and reach the checkpoint: another run's
 // history would be truncated and mixed in, and a shorter one would leave a silent gap.
 void require_history_continues(const io::History& history, const std::string& run_id, double step,
-                               const std::string& output_dir) {
+                               double strain, double history_interval, const std::string& output_dir) {
   const std::string path = output_dir + "/history.h5";
   require_input(!run_id.empty(), fmt::format("load --resume: the input is not a checkpoint of a loading run "
                                              "(no run_id), but {} belongs to run {}",
@@ -98,6 +99,22 @@ void require_history_continues(const io::History& history, const std::string& ru
                             "run stopped between writing the two): resume from an earlier checkpoint that "
                             "the history reaches",
                             path, history.covers_step(), step));
+  // The rows themselves, not only the attribute that claims them: the last row at or before the
+  // checkpoint must be less than one history_interval of strain behind it (1e-6 of an interval
+  // absorbs the cell's rounding of a quasi-static run's nominal strains).
+  const auto& steps = history.column("step");
+  const auto& strains = history.column("strain_11");
+  std::size_t last = 0;
+  for (std::size_t r = 0; r < steps.size() && steps[r] <= step; ++r)
+    last = r;
+  const double slack = 1e-6 * history_interval;
+  const double next_row = next_multiple(-strains[last] + slack, history_interval);
+  require_input(steps[last] == step || strain <= next_row + slack,
+                fmt::format("load --resume: {} holds rows up to strain {:.6g} (step {}) before the input "
+                            "checkpoint's strain {:.6g} (step {}), although its covers_step claims step {}: "
+                            "rows are missing (the history was replaced or edited); resume from a "
+                            "checkpoint that its rows reach, or start the loading anew",
+                            path, -strains[last], steps[last], strain, step, history.covers_step()));
 }
 
 } // namespace
@@ -160,6 +177,13 @@ public:
   }
   [[nodiscard]] std::size_t checkpoint() const { return next_checkpoint_; }
   void checkpoint_written() { ++next_checkpoint_; }
+  /// Where the history and checkpoints stood, for a relaxation stopped on SIGTERM: a resume takes
+  /// them back exactly (its events at the relaxation's strain are still ahead of it).
+  [[nodiscard]] double next_history() const { return next_history_; }
+  void resume(double next_history, std::size_t next_checkpoint) {
+    next_history_ = next_history;
+    next_checkpoint_ = next_checkpoint;
+  }
 
 private:
   // The next multiple k x increment above the strain (k an integer: a strain on a multiple, as a
@@ -186,20 +210,25 @@ public:
       : simulation_(simulation), config_(config), output_dir_(output_dir), provenance_(provenance),
         logger_(logger), labels_{{}, run_id} {}
 
-  void start_history(bool resuming);
+  // `memory`: what an interrupted relaxation gives back, the loading's own control and settings.
+  void start_history(bool resuming, const PhaseMemory* memory);
   // Athermal quasi-static loading: the strain to `end` in one affine step of the cell (axis 1 to
   // its length there, axis 2 held, axis 3 servoed), then the minimisation of relax_increment.
   void affine_increment(double end, Phase& loading);
   // OVAL's loading: each strain increment is followed by a relaxation to a small force
   // imbalance, so the path is a sequence of near-static states (docs/methods/dem.md).
-  void relax_increment(double strain);
+  // Each relaxation returns false when it stopped on SIGTERM (kept for write_interrupted); a
+  // relaxation interrupted before (`resume`) continues where it stopped.
+  bool relax_increment(double strain, const RelaxationState* resume, const StrainSchedule& schedule);
   void append_history_row() { history_.append(history_row(simulation_, config_)); }
-  void write_checkpoint(std::size_t index, double strain);
+  bool write_checkpoint(double strain, const RelaxationState* resume, const StrainSchedule& schedule);
   // SIGTERM (a SLURM time limit or scancel) ends the run at a control update, every rank at
   // the same step, with a checkpoint from which --resume continues exactly: the increments,
-  // history rows and checkpoints ahead all follow from the strain.
+  // history rows and checkpoints ahead all follow from the strain, and a relaxation stopped in
+  // from its /relaxation group (dem/io/relaxation_state.hpp).
   void write_interrupted(double strain);
-  void relax(const EquilibriumConfig& tolerances, const std::string& label);
+  bool relax(const EquilibriumConfig& tolerances, const std::string& label, const RelaxationState* resume,
+             io::InterruptedRelaxation where);
   LoadSummary finish(std::int64_t start_step, double wall_seconds);
 
 private:
@@ -212,14 +241,17 @@ private:
   io::History history_;
   SectionTimes output_{{"output"}}; // checkpoints and the history written, for the timing table
   LoadSummary summary_;
+  std::optional<io::InterruptedRelaxation> interrupted_; // a relaxation stopped on SIGTERM
 };
 
-void LoadingRun::start_history(bool resuming) {
+void LoadingRun::start_history(bool resuming, const PhaseMemory* memory) {
   if (resuming) {
     history_ = io::History::read(output_dir_);
     const auto step = static_cast<double>(simulation_.step_count());
-    require_history_continues(history_, labels_.run_id, step, output_dir_);
-    io::require_resume_matches(config_, simulation_.settings(), simulation_.control(),
+    require_history_continues(history_, labels_.run_id, step, compressive_strain(simulation_),
+                              config_.load.history_interval, output_dir_);
+    io::require_resume_matches(config_, memory != nullptr ? memory->settings : simulation_.settings(),
+                               memory != nullptr ? memory->control : simulation_.control(),
                                simulation_.critical_time_step());
     history_.truncate_after_step(step);
   } else {
@@ -248,24 +280,49 @@ void LoadingRun::affine_increment(double end, Phase& loading) {
   simulation_.reconfigure(settings);
 }
 
-void LoadingRun::relax(const EquilibriumConfig& tolerances, const std::string& label) {
-  const Relaxation relaxed =
-      relax_to_equilibrium(simulation_, tolerances, config_.equilibrium.max_steps, logger_, label);
-  summary_.relaxation_steps += relaxed.steps;
-  summary_.relaxation_seconds += relaxed.seconds;
+// Which of the load's relaxations is under way, for a resume to continue it in its place.
+io::InterruptedRelaxation where_in_load(const std::string& purpose, double strain,
+                                        const StrainSchedule& schedule) {
+  io::InterruptedRelaxation where;
+  where.command = "load";
+  where.purpose = purpose;
+  where.strain = strain;
+  where.next_history = schedule.next_history();
+  where.next_checkpoint = static_cast<std::int64_t>(schedule.checkpoint());
+  return where;
 }
 
-void LoadingRun::relax_increment(double strain) {
+bool LoadingRun::relax(const EquilibriumConfig& tolerances, const std::string& label,
+                       const RelaxationState* resume, io::InterruptedRelaxation where) {
+  const Relaxation relaxed = relax_to_equilibrium(simulation_, tolerances, config_.equilibrium.max_steps,
+                                                  logger_, label, {.stoppable = true, .resume = resume});
+  // A resumed relaxation's steps before the stop were counted by the run that stopped.
+  const std::int64_t earlier = resume != nullptr ? resume->steps : 0;
+  summary_.relaxation_steps += relaxed.steps - earlier;
+  summary_.relaxation_seconds += relaxed.seconds;
+  if (!relaxed.interrupted) return true;
+  where.state = *relaxed.interrupted;
+  interrupted_ = std::move(where);
+  return false;
+}
+
+bool LoadingRun::relax_increment(double strain, const RelaxationState* resume,
+                                 const StrainSchedule& schedule) {
   EquilibriumConfig tolerances = config_.equilibrium;
   tolerances.tolerance = config_.load.increment_tolerance;
   tolerances.verify_steps = 0;
-  relax(tolerances, fmt::format("relaxation after the increment to strain {:.5g}", strain));
+  return relax(tolerances, fmt::format("relaxation after the increment to strain {:.5g}", strain), resume,
+               where_in_load("increment", strain, schedule));
 }
 
-void LoadingRun::write_checkpoint(std::size_t index, double strain) {
+bool LoadingRun::write_checkpoint(double strain, const RelaxationState* resume,
+                                  const StrainSchedule& schedule) {
+  const std::size_t index = schedule.checkpoint();
   const std::string path = load_checkpoint_path(output_dir_, index);
   if (config_.equilibrium.at_checkpoints) {
-    relax(config_.equilibrium, fmt::format("relaxation before checkpoint {}", index));
+    if (!relax(config_.equilibrium, fmt::format("relaxation before checkpoint {}", index), resume,
+               where_in_load("checkpoint", strain, schedule)))
+      return false;
     append_history_row(); // the relaxed state, at the same strain
   }
   // The log reports the ratios measured for the file: simulation.equilibrium() is stale
@@ -279,12 +336,14 @@ void LoadingRun::write_checkpoint(std::size_t index, double strain) {
                 simulation_.servo_error(), checkpoint.unbalanced_force_ratio,
                 checkpoint.kinetic_elastic_ratio);
   summary_.checkpoints.push_back(path);
+  return true;
 }
 
 void LoadingRun::write_interrupted(double strain) {
   summary_.interrupted_checkpoint = output_dir_ + "/load_interrupted.h5";
   const ScopedSection writing(output_, 0);
-  io::write_checkpoint(summary_.interrupted_checkpoint, simulation_, labels_, provenance_);
+  io::write_interrupted_checkpoint(summary_.interrupted_checkpoint, simulation_, labels_, provenance_,
+                                   interrupted_ ? &*interrupted_ : nullptr);
   logger_->warn(
       "load: stopped on SIGTERM at strain {:.6g} (step {}): wrote {}; continue with --input {} --resume",
       strain, simulation_.step_count(), summary_.interrupted_checkpoint, summary_.interrupted_checkpoint);
@@ -313,49 +372,85 @@ LoadSummary LoadingRun::finish(std::int64_t start_step, double wall_seconds) {
 
 LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
                         const h5::Provenance& provenance, const Logger& logger, bool resuming,
-                        const std::string& run_id) {
+                        const std::string& run_id, const io::InterruptedRelaxation* interrupted) {
   const auto& load = config.load;
   const auto start_wall = std::chrono::steady_clock::now();
   const std::int64_t start_step = simulation.step_count();
   LoadingRun run(simulation, config, output_dir, provenance, logger, run_id);
-  run.start_history(resuming);
+  // A run stopped inside a relaxation continues it, then what followed it in that pass of the loop.
+  const RelaxationState* pending = resuming && interrupted != nullptr ? &interrupted->state : nullptr;
+  require_input(pending == nullptr || interrupted->command == "load",
+                fmt::format("load --resume: the input holds an interrupted '{}' relaxation, not a load's: "
+                            "continue it with aniso-dem {} --resume",
+                            pending != nullptr ? interrupted->command : "",
+                            pending != nullptr ? interrupted->command : ""));
+  const bool pending_checkpoint = pending != nullptr && interrupted->purpose == "checkpoint";
+  run.start_history(resuming, pending != nullptr ? &pending->memory : nullptr);
   // A quasi-static run's events follow its schedule's strains, which the cell's strain rounds.
   const auto strain_now = [&] {
     const double strain = compressive_strain(simulation);
     return load.quasi_static ? nominal_strain(load, strain) : strain;
   };
   StrainSchedule schedule(load, strain_now());
+  if (pending != nullptr)
+    schedule.resume(interrupted->next_history, static_cast<std::size_t>(interrupted->next_checkpoint));
   logger->info(
       "load: rate {:.4g} /s, inertial number {:.3g}, from strain {:.5g} to {:.5g}, time step {:.3g} s",
       -simulation.control().target[0], load.inertial_number, compressive_strain(simulation),
       load.final_strain, simulation.settings().time_step);
   Progress progress(logger, "load", load.final_strain, 10.0, {}, compressive_strain(simulation));
   Phase loading(simulation, "load");
-  for (double strain = strain_now(); strain < load.final_strain; strain = strain_now()) {
-    if (load.quasi_static) {
-      const double end = schedule.next_increment();
-      run.affine_increment(end, loading);
-      run.relax_increment(end);
+  // The relaxation stopped in continues once, in its place, at the strain it stopped at (also
+  // past the final strain: the last checkpoint's relaxation may be the one stopped in).
+  const auto resumed = [&pending]() {
+    const RelaxationState* state = pending;
+    pending = nullptr;
+    return state;
+  };
+  for (double strain = strain_now(); strain < load.final_strain || pending != nullptr;
+       strain = strain_now()) {
+    if (pending_checkpoint && pending != nullptr) {
+      strain = interrupted->strain; // the increment and the history row before it are done
+    } else if (load.quasi_static) {
+      const double end = pending != nullptr ? interrupted->strain : schedule.next_increment();
+      if (pending == nullptr) run.affine_increment(end, loading);
+      if (!run.relax_increment(end, resumed(), schedule)) {
+        run.write_interrupted(end);
+        break;
+      }
       schedule.increment_relaxed(end);
       strain = end;
     } else {
-      loading.step();
-      strain = compressive_strain(simulation);
-      if (schedule.increment_ends(strain)) {
-        run.relax_increment(strain);
+      if (pending == nullptr) {
+        loading.step();
+        strain = compressive_strain(simulation);
+      } else {
+        strain = interrupted->strain;
+      }
+      if (pending != nullptr || schedule.increment_ends(strain)) {
+        if (!run.relax_increment(strain, resumed(), schedule)) {
+          run.write_interrupted(strain);
+          break;
+        }
         schedule.increment_relaxed(strain);
       }
     }
-    progress.update(strain);
-    if (schedule.history_due(strain)) {
-      run.append_history_row();
-      schedule.history_written(strain);
+    if (pending == nullptr) {
+      progress.update(strain);
+      if (schedule.history_due(strain)) {
+        run.append_history_row();
+        schedule.history_written(strain);
+      }
     }
     if (schedule.checkpoint_due(strain)) {
-      run.write_checkpoint(schedule.checkpoint(), strain);
+      if (!run.write_checkpoint(strain, resumed(), schedule)) {
+        run.write_interrupted(strain);
+        break;
+      }
       schedule.checkpoint_written();
     }
-    if ((load.quasi_static || simulation.at_control_update()) && stop_requested(simulation.comm())) {
+    if ((load.quasi_static || simulation.at_control_update()) &&
+        stop_requested(simulation.comm(), simulation.step_count())) {
       run.write_interrupted(strain);
       break;
     }

@@ -9,6 +9,7 @@
 #include "common/log.hpp"
 #include "common/timer.hpp"
 #include "dem/config.hpp"
+#include "dem/io/relaxation_state.hpp"
 #include "dem/simulation.hpp"
 
 #include <string>
@@ -37,9 +38,13 @@ void start_loading(Simulation& simulation, const DemConfig& config);
 /// (load_NNN.h5 in output_dir, NNN = index in checkpoint_strains) and the history, each marked
 /// with run_id. Resuming, run_id is the input checkpoint's: the history.h5 in output_dir must
 /// belong to the same run and reach the checkpoint's step (InputError naming both otherwise).
+/// `interrupted`: the input's relaxation stopped on SIGTERM (its /relaxation group), which a
+/// resumed run continues first. SIGTERM, at a control update of the loading or of a relaxation,
+/// ends the run with load_interrupted.h5 (LoadSummary::interrupted_checkpoint).
 LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
                         const h5::Provenance& provenance, const Logger& logger, bool resuming,
-                        const std::string& run_id = {});
+                        const std::string& run_id = {},
+                        const io::InterruptedRelaxation* interrupted = nullptr);
 
 /// Path of checkpoint number `index` in `folder`.
 std::string load_checkpoint_path(const std::string& folder, std::size_t index);

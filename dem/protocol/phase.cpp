@@ -45,6 +45,13 @@ double Phase::seconds() const {
   return std::chrono::duration<double>(SectionTimes::Clock::now() - start_).count();
 }
 
+void Phase::resume(const PhaseMemory& memory, std::int64_t steps) {
+  control_ = memory.control;
+  settings_ = memory.settings;
+  watched_ = memory.watched;
+  steps_ = steps;
+}
+
 void Phase::end() {
   if (!give_back_) return;
   give_back_ = false;

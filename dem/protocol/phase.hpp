@@ -23,6 +23,14 @@
 
 namespace aniso::dem::protocol {
 
+/// What a phase that gives back remembers: the control, settings and equilibrium watching the
+/// simulation had when it began.
+struct PhaseMemory {
+  model::CellControl control;
+  SimulationSettings settings;
+  bool watched = false;
+};
+
 class Phase {
 public:
   enum class GiveBack : std::uint8_t { nothing, on_exit };
@@ -57,6 +65,15 @@ public:
   /// (collective: the servo's rates and the damping's rate are measured anew). Nothing without
   /// GiveBack::on_exit.
   void end();
+
+  /// What the phase will give back.
+  [[nodiscard]] PhaseMemory memory() const { return {control_, settings_, watched_}; }
+  /// Continues a phase interrupted after `steps` steps (a checkpoint holds it): it gives back
+  /// `memory`, what the phase remembered then, not what the simulation has now.
+  void resume(const PhaseMemory& memory, std::int64_t steps);
+  /// Leaves the simulation as it is, mid-phase, and gives nothing back: an interrupted phase is
+  /// written as it stands (memory() and steps() then, for resume()).
+  void suspend() { give_back_ = false; }
 
 private:
   [[nodiscard]] bool may_step();

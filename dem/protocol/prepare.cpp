@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
+#include "common/stop_request.hpp"
 #include "dem/data/spatial_order.hpp"
 #include "dem/io/parameters.hpp"
 #include "dem/model/rotation.hpp"
@@ -26,31 +27,42 @@ namespace {
 // forces balanced (unbalanced-force ratio below seize_force_ratio). Whenever p
 // passes the seize stress the cell is held still, so that a hot, colliding
 // assembly is not mistaken for a seized one: if the stress then decays as the
-// motion is damped out, compaction resumes. Returns the steps taken.
+// motion is damped out, compaction resumes. On SIGTERM it stops at a control update with
+// `stopped` set, from which `resume` continues (the simulation then being its state there).
 struct Compaction {
   std::int64_t steps = 0;
   double seconds = 0; // wall time
+  io::CompactionState state;
+  bool stopped = false;
 };
 
 Compaction compact_until_seized(Simulation& simulation, double rate, const PrepareConfig& prepare,
-                                const Logger& logger, const std::string& label, double expected_strain) {
+                                const Logger& logger, const std::string& label, double expected_strain,
+                                const io::CompactionState* resume) {
   Phase phase(simulation, label);
-  simulation.set_control(model::strain_controlled(simulation.control(), Vec3::Constant(rate)));
-  bool holding = false;
+  io::CompactionState state;
+  if (resume != nullptr) {
+    state = *resume;
+    phase.resume(phase.memory(), state.steps);
+  } else {
+    state.start_volume = simulation.cell().volume();
+    state.start_length = simulation.cell().lengths()[0];
+    simulation.set_control(model::strain_controlled(simulation.control(), Vec3::Constant(rate)));
+  }
+  bool& holding = state.holding;
   const std::int64_t interval = simulation.settings().control_interval;
   // Compacting from the sparse state to a solid fraction of 0.74 is a strain of about
   // ln(0.74 / 0.05) / 3 at most; beyond that something is wrong.
   const double strain_limit = std::log(0.75 / 0.05) / 3.0;
   const std::int64_t max_hold_steps = 2000 * interval;
-  std::int64_t held_since = 0;
+  std::int64_t& held_since = state.held_since;
   // The progress is the volumetric strain towards where the compaction is expected to seize, not
   // p: p stays near zero until the network jams and then rises within a few hundred steps, so an
   // estimate from p said "ETA 0 s" for most of the way. The pace includes the held phases, so the
   // estimate grows while the cell is held.
-  const double start_volume = simulation.cell().volume();
+  const double start_volume = state.start_volume;
   const double strain_to_seize = std::max(expected_strain, 1e-6);
   Progress progress(logger, label + " (volumetric strain to the expected seizure)", strain_to_seize, 10.0);
-  const Vec3 start_lengths = simulation.cell().lengths();
   for (;;) {
     phase.advance_to_update();
     const double p = mean_stress_compression_positive(simulation.stress());
@@ -80,15 +92,20 @@ Compaction compact_until_seized(Simulation& simulation, double rate, const Prepa
       simulation.set_control(
           model::strain_controlled(simulation.control(), Vec3::Constant(holding ? 0.0 : rate)));
     }
-    if (std::log(start_lengths[0] / simulation.cell().lengths()[0]) > strain_limit) {
+    if (std::log(state.start_length / simulation.cell().lengths()[0]) > strain_limit) {
       throw ConvergenceError(
           fmt::format("{}: the assembly did not seize within a compaction strain of {:.2f} "
                       "(p = {:.3g} Pa, seize_stress {:.3g} Pa)",
                       label, strain_limit, p, prepare.seize_stress));
     }
+    // Here, where the next update continues from the state above alone.
+    if (stop_requested(simulation.comm(), simulation.step_count())) {
+      state.steps = phase.steps();
+      return {phase.steps(), phase.seconds(), state, true};
+    }
   }
   simulation.set_control(model::fixed_cell(simulation.control()));
-  return {phase.steps(), phase.seconds()};
+  return {phase.steps(), phase.seconds(), state, false};
 }
 
 // Random velocities of rms `rms_speed`, drawn in id order on every rank so that the
@@ -130,14 +147,18 @@ Quat random_orientation(RandomStream& stream) {
 // Consolidates to p0 with the stress servo on all three axes and relaxes to static
 // equilibrium there (dem/protocol/relax.hpp): p within consolidation_tolerance and the
 // unbalanced-force ratio below dem.equilibrium.tolerance.
-Relaxation consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger) {
-  simulation.set_control(model::isotropic_stress(simulation.control(), config.prepare.confining_pressure));
+Relaxation consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger,
+                       const RelaxationStart& start) {
+  if (start.resume == nullptr)
+    simulation.set_control(model::isotropic_stress(simulation.control(), config.prepare.confining_pressure));
   EquilibriumConfig tolerances = config.equilibrium;
   tolerances.stress_tolerance = config.prepare.consolidation_tolerance;
+  // The run's own time step: a relaxation stopped within FIRE holds FIRE's.
+  const double time_step =
+      start.resume != nullptr ? start.resume->memory.settings.time_step : simulation.settings().time_step;
   const std::int64_t max_steps =
-      config.equilibrium.max_steps +
-      200 * static_cast<std::int64_t>(0.05 / (rate * simulation.settings().time_step));
-  return relax_to_equilibrium(simulation, tolerances, max_steps, logger, "consolidation to p0");
+      config.equilibrium.max_steps + 200 * static_cast<std::int64_t>(0.05 / (rate * time_step));
+  return relax_to_equilibrium(simulation, tolerances, max_steps, logger, "consolidation to p0", start);
 }
 
 void with_loading_contacts(Simulation& simulation, const DemConfig& config, double rate) {
@@ -254,10 +275,16 @@ std::string seized_name(int cycle, int refinement) {
                          : fmt::format("refinement {} of cycle {}", refinement, cycle);
 }
 
+// Thrown on every rank at once when the protocol stops on SIGTERM; prepare_assembly catches it.
+struct Stopped {
+  PrepareStop stop;
+};
+
 class Protocol {
 public:
-  Protocol(const DemConfig& config, const Logger& logger, const mpi::Comm& comm)
-      : config_(config), logger_(logger), sizes_(config.seed, 0), placement_(config.seed, 1),
+  Protocol(const DemConfig& config, const Logger& logger, const mpi::Comm& comm,
+           const io::PreparePieces& pieces)
+      : config_(config), logger_(logger), pieces_(pieces), sizes_(config.seed, 0), placement_(config.seed, 1),
         agitation_(config.seed, 2), refinement_stream_(config.seed, 4),
         sparse_(sparse_assembly(config, sizes_, placement_, comm)) {
     sparse_.watch_equilibrium(true); // the seize test reads it at every control update
@@ -278,6 +305,7 @@ public:
 private:
   const DemConfig& config_;
   const Logger& logger_;
+  const io::PreparePieces& pieces_;
   RandomStream sizes_, placement_, agitation_, refinement_stream_;
   Simulation sparse_;
   double rate_ = 0, rms_speed_ = 0;
@@ -292,9 +320,54 @@ private:
   bool cycles_left() const { return static_cast<std::int64_t>(cycles_.size()) < config_.prepare.cycles; }
   void run_cycle();
   bool refine(double aim);
+  // A seized state and how it was reached ("after N steps", or the file it was taken from).
+  struct Seizure {
+    Simulation state;
+    std::string how;
+  };
+  Seizure seize(Simulation simulation, const io::PieceName& name, const std::string& label, double expected);
+  std::vector<RandomStream::State> streams() const {
+    return {sizes_.state(), placement_.state(), agitation_.state(), refinement_stream_.state()};
+  }
   Consolidated consolidate_seized(Seized& seized);
   std::string failure_hint(const Consolidated& best, double aim) const;
 };
+
+// A compaction of `simulation` (agitated) until it seizes, kept as the piece `name`; or the piece
+// that a stopped prepare kept, with the random streams as they were after it; a compaction stopped
+// on SIGTERM is continued. Throws Stopped, keeping the compaction's state.
+Protocol::Seizure Protocol::seize(Simulation simulation, const io::PieceName& name, const std::string& label,
+                                  double expected) {
+  if (std::optional<io::KeptPiece> kept = pieces_.find(name)) {
+    const auto& rng = kept->record.rng_state;
+    sizes_ = RandomStream::from_state(rng[0]);
+    placement_ = RandomStream::from_state(rng[1]);
+    agitation_ = RandomStream::from_state(rng[2]);
+    refinement_stream_ = RandomStream::from_state(rng[3]);
+    last_compaction_strain_ = kept->record.compaction_strain;
+    // Watched, as every state descended from the sparse assembly is (the seize test reads it);
+    // by assignment alone, so that the damping rate stays the stored one.
+    kept->simulation.put_back(kept->simulation.control(), kept->simulation.settings(), true);
+    return {std::move(kept->simulation), "as kept in " + kept->path};
+  }
+  std::optional<io::KeptCompaction> stopped = pieces_.find_stopped_compaction(name);
+  if (stopped) {
+    logger_->info("{}: continued from {}", label, stopped->path);
+    simulation = std::move(stopped->simulation);
+    simulation.put_back(simulation.control(), simulation.settings(), true); // as kept pieces
+  }
+  const Compaction compaction = compact_until_seized(simulation, -rate_, config_.prepare, logger_, label,
+                                                     expected, stopped ? &stopped->state : nullptr);
+  compaction_seconds_ += compaction.seconds;
+  if (compaction.stopped) {
+    const std::string path = pieces_.keep_stopped_compaction(name, simulation, streams(), compaction.state);
+    throw Stopped{{label, simulation.step_count(), path}};
+  }
+  if (name.refinement == 0)
+    last_compaction_strain_ = std::log(compaction.state.start_volume / simulation.cell().volume());
+  pieces_.keep(name, simulation, {streams(), last_compaction_strain_});
+  return {std::move(simulation), fmt::format("after {} steps", compaction.steps)};
+}
 
 void Protocol::run_cycle() {
   const int cycle = static_cast<int>(cycles_.size()) + 1;
@@ -303,19 +376,16 @@ void Protocol::run_cycle() {
   // Expected: the first cycle seizes at most at random close packing (solid fraction 0.64); a later
   // one about where the cycle before it did, from its own start.
   constexpr double random_close_packing = 0.64;
-  const double start_volume = simulation.cell().volume();
-  const double expected = cycle == 1
-                              ? std::log(random_close_packing * start_volume / simulation.solid_volume())
-                              : last_compaction_strain_;
-  const Compaction compaction = compact_until_seized(simulation, -rate_, config_.prepare, logger_,
-                                                     fmt::format("compaction cycle {}", cycle), expected);
-  last_compaction_strain_ = std::log(start_volume / simulation.cell().volume());
-  const StateMeasures m = simulation.measure();
-  compaction_seconds_ += compaction.seconds;
-  logger_->info("cycle {:2d}: seized after {} steps at e = {:.4f}, Z = {:.3f}", cycle, compaction.steps,
-                m.void_ratio, m.coordination);
+  const double expected =
+      cycle == 1 ? std::log(random_close_packing * simulation.cell().volume() / simulation.solid_volume())
+                 : last_compaction_strain_;
+  Seizure seized = seize(std::move(simulation), {io::PieceKind::seized, cycle, 0},
+                         fmt::format("compaction cycle {}", cycle), expected);
+  const StateMeasures m = seized.state.measure();
+  logger_->info("cycle {:2d}: seized {} at e = {:.4f}, Z = {:.3f}", cycle, seized.how, m.void_ratio,
+                m.coordination);
   cycles_.push_back(seized_.size());
-  seized_.push_back(Seized{std::move(simulation), m.void_ratio, cycle, 0, 1.0, false});
+  seized_.push_back(Seized{std::move(seized.state), m.void_ratio, cycle, 0, 1.0, false});
 }
 
 // Runs cycle k + 1 again from the state cycle k seized in, with the agitation energy chosen so
@@ -337,36 +407,56 @@ bool Protocol::refine(double aim) {
   ++refinements_;
   Simulation simulation = base.state;
   agitate(simulation, rms_speed_ * std::sqrt(energy), refinement_stream_);
-  const Compaction compaction = compact_until_seized(
-      simulation, -rate_, config_.prepare, logger_,
-      fmt::format("refinement {} of cycle {}", refinements_, cycle), last_compaction_strain_);
-  const StateMeasures m = simulation.measure();
+  Seizure seized = seize(std::move(simulation), {io::PieceKind::seized, cycle, refinements_},
+                         seized_name(cycle, refinements_), last_compaction_strain_);
+  const StateMeasures m = seized.state.measure();
   logger_->info(
-      "refinement {} of cycle {} (agitation energy x {:.3f}, aiming at e = {:.4f}): seized after {} "
-      "steps at e = {:.4f}",
-      refinements_, cycle, energy, aim, compaction.steps, m.void_ratio);
-  compaction_seconds_ += compaction.seconds;
-  seized_.push_back(Seized{std::move(simulation), m.void_ratio, cycle, refinements_, energy, false});
+      "refinement {} of cycle {} (agitation energy x {:.3f}, aiming at e = {:.4f}): seized {} at e = "
+      "{:.4f}",
+      refinements_, cycle, energy, aim, seized.how, m.void_ratio);
+  seized_.push_back(Seized{std::move(seized.state), m.void_ratio, cycle, refinements_, energy, false});
   return true;
 }
 
+// Consolidates the seized state, kept as a piece; or takes the piece a stopped prepare kept, or
+// continues its consolidation stopped on SIGTERM. Throws Stopped, keeping the consolidation's state.
 Consolidated Protocol::consolidate_seized(Seized& seized) {
   seized.consolidated = true;
-  logger_->info("consolidating {} (seized at e = {:.4f}) to p0", seized_name(seized.cycle, seized.refinement),
-                seized.void_ratio);
-  Consolidated result{seized.state, {}, {}, seized.void_ratio, seized.cycle, seized.refinement};
+  const std::string name = seized_name(seized.cycle, seized.refinement);
+  const io::PieceName piece{io::PieceKind::consolidated, seized.cycle, seized.refinement};
+  std::optional<io::KeptPiece> kept = pieces_.find(piece);
+  std::optional<io::KeptRelaxation> stopped = kept ? std::nullopt : pieces_.find_stopped_consolidation(piece);
+  Simulation start = [&]() -> Simulation {
+    if (kept) return std::move(kept->simulation);
+    if (stopped) return std::move(stopped->simulation);
+    return seized.state;
+  }();
+  Consolidated result{std::move(start), {}, {}, seized.void_ratio, seized.cycle, seized.refinement};
   Simulation& chosen = result.state;
-  // Consolidated with the friction and damping that loading will use, so that the relaxation
-  // proves the state static with them (a state verified with heavier damping can creep without it).
-  with_loading_contacts(chosen, config_, rate_);
-  result.relaxation = consolidate(chosen, config_, rate_, logger_);
-  consolidation_seconds_ += result.relaxation.seconds;
-  chosen.watch_equilibrium(false);
+  if (kept) {
+    logger_->info("consolidation of {}: taken from {}", name, kept->path);
+  } else {
+    logger_->info("consolidating {} (seized at e = {:.4f}) to p0{}", name, seized.void_ratio,
+                  stopped ? ", continued from " + stopped->path : "");
+    // Consolidated with the friction and damping that loading will use, so that the relaxation
+    // proves the state static with them (a state verified with heavier damping can creep without it).
+    if (!stopped) with_loading_contacts(chosen, config_, rate_);
+    result.relaxation = consolidate(chosen, config_, rate_, logger_,
+                                    {.stoppable = true, .resume = stopped ? &stopped->state : nullptr});
+    consolidation_seconds_ += result.relaxation.seconds;
+    if (result.relaxation.interrupted) {
+      const std::string path =
+          pieces_.keep_stopped_consolidation(piece, chosen, streams(), *result.relaxation.interrupted);
+      throw Stopped{{"consolidation of " + name, chosen.step_count(), path}};
+    }
+    chosen.watch_equilibrium(false);
+    pieces_.keep(piece, chosen, {streams(), last_compaction_strain_});
+    logger_->info("consolidation took {} steps; unbalanced-force ratio {:.2e}, kinetic/elastic {:.2e}",
+                  result.relaxation.steps, result.relaxation.equilibrium.unbalanced_force_ratio,
+                  result.relaxation.equilibrium.kinetic_elastic_ratio());
+  }
   result.measures = chosen.measure();
   const StateMeasures& m = result.measures;
-  logger_->info("consolidation took {} steps; unbalanced-force ratio {:.2e}, kinetic/elastic {:.2e}",
-                result.relaxation.steps, result.relaxation.equilibrium.unbalanced_force_ratio,
-                result.relaxation.equilibrium.kinetic_elastic_ratio());
   logger_->info("consolidated to p = {:.4g} Pa: e = {:.4f} (compacted by {:.4f}), Z = {:.3f}, Z without "
                 "rattlers = {:.3f} ({} rattlers, {:.1f}%)",
                 m.mean_stress, m.void_ratio, seized.void_ratio - m.void_ratio, m.coordination,
@@ -466,8 +556,20 @@ PreparedAssembly Protocol::run() {
 
 } // namespace
 
+PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm,
+                                  const io::PreparePieces& pieces) {
+  Protocol protocol(config, logger, comm, pieces);
+  try {
+    return protocol.run();
+  } catch (const Stopped& stopped) {
+    PreparedAssembly result;
+    result.stopped = stopped.stop;
+    return result;
+  }
+}
+
 PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm) {
-  return Protocol(config, logger, comm).run();
+  return prepare_assembly(config, logger, comm, io::PreparePieces(comm));
 }
 
 } // namespace aniso::dem::protocol

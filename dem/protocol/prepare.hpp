@@ -10,6 +10,7 @@
 #include "common/log.hpp"
 #include "common/rng.hpp"
 #include "dem/config.hpp"
+#include "dem/io/prepare_pieces.hpp"
 #include "dem/protocol/relax.hpp"
 #include "dem/simulation.hpp"
 
@@ -19,7 +20,15 @@
 
 namespace aniso::dem::protocol {
 
+/// Where a prepare stopped on SIGTERM.
+struct PrepareStop {
+  std::string piece; ///< the piece in progress
+  std::int64_t step = 0;
+  std::string kept; ///< the file its state went to
+};
+
 struct PreparedAssembly {
+  std::optional<PrepareStop> stopped; ///< set when stopped on SIGTERM: nothing else is
   std::optional<Simulation> simulation;
   std::vector<double> cycle_void_ratios;      ///< void ratio at each cycle's seizure
   std::vector<double> refinement_void_ratios; ///< and at each refinement cycle's, in order
@@ -52,8 +61,10 @@ Simulation sparse_assembly(const DemConfig& config, RandomStream& sizes, RandomS
 
 /// Isotropic consolidation to p0 (dem.prepare.confining_pressure): the stress servo on all three
 /// axes at strain rates up to `rate`, relaxed to the verified equilibrium of dem.equilibrium with p
-/// within dem.prepare.consolidation_tolerance (collective).
-Relaxation consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger);
+/// within dem.prepare.consolidation_tolerance (collective); `start` as for relax_to_equilibrium
+/// (a resumed consolidation keeps the control it stopped with).
+Relaxation consolidate(Simulation& simulation, const DemConfig& config, double rate, const Logger& logger,
+                       const RelaxationStart& start = {});
 
 /// Gives the simulation the contacts loading will use (dem.material.friction, the contact and
 /// global damping of dem.integration) and the servo's rate limit `rate`: a state consolidated
@@ -61,6 +72,13 @@ Relaxation consolidate(Simulation& simulation, const DemConfig& config, double r
 void with_loading_contacts(Simulation& simulation, const DemConfig& config, double rate);
 
 /// The whole preparation protocol (collective); the result does not depend on the rank count.
+/// Each seized and consolidated state is kept in `pieces` as it is reached, and a piece that
+/// `pieces` already holds is taken from there, not run: a prepare stopped on SIGTERM (checked at
+/// every control update; it keeps the state of the compaction or consolidation in progress)
+/// continues to the bits of an uninterrupted one.
+PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm,
+                                  const io::PreparePieces& pieces);
+/// The same, keeping nothing.
 PreparedAssembly prepare_assembly(const DemConfig& config, const Logger& logger, const mpi::Comm& comm);
 
 } // namespace aniso::dem::protocol

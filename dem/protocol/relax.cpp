@@ -1,6 +1,7 @@
 #include "dem/protocol/relax.hpp"
 
 #include "common/error.hpp"
+#include "common/stop_request.hpp"
 #include "dem/model/cell_control.hpp"
 #include "dem/protocol/fire.hpp"
 #include "dem/protocol/phase.hpp"
@@ -35,14 +36,19 @@ bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& confi
 }
 
 Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig& config,
-                                std::int64_t max_steps, const Logger& logger, const std::string& label) {
+                                std::int64_t max_steps, const Logger& logger, const std::string& label,
+                                const RelaxationStart& start) {
   Phase phase(simulation, label, max_steps, Phase::GiveBack::on_exit);
-  const model::CellControl loading = simulation.control();
-  const double loading_damping = simulation.settings().global_damping;
+  // Where the relaxation stands; an interrupted one continues from its own.
+  RelaxationState state;
+  if (start.resume != nullptr) {
+    state = *start.resume;
+    phase.resume(state.memory, state.steps);
+  }
+  const model::CellControl loading = phase.memory().control;
+  const double loading_damping = phase.memory().settings.global_damping;
   const model::CellControl held = model::strain_axes_held(loading);
   const model::CellControl fixed = model::fixed_cell(held);
-  int left_equilibrium = 0; // verification windows that the state did not stay balanced through
-  std::int64_t verifying_steps = 0;
   phase.fail_beyond_budget([&] {
     return fmt::format(
         "{}: not in equilibrium after {} steps (dem.equilibrium.max_steps): unbalanced-force ratio "
@@ -53,15 +59,31 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
         label, max_steps, simulation.equilibrium().unbalanced_force_ratio,
         simulation.equilibrium().unbalanced_torque_ratio, config.tolerance,
         std::abs(model::servo_error(loading, simulation.stress())), config.stress_tolerance,
-        config.verify_steps, left_equilibrium);
+        config.verify_steps, state.windows_left);
   });
   const auto with_damping = [&](double ratio) {
     SimulationSettings settings = simulation.settings();
     settings.global_damping = ratio;
     simulation.reconfigure(settings);
   };
+  // Checked at the control updates where the state above says all there is to continue from.
+  const auto stop_here = [&](const std::optional<Fire>& minimiser) {
+    if (!start.stoppable || !stop_requested(simulation.comm(), simulation.step_count())) return false;
+    state.steps = phase.steps();
+    state.memory = phase.memory();
+    state.fire = minimiser ? std::optional<FireState>(minimiser->state()) : std::nullopt;
+    phase.suspend();
+    return true;
+  };
+  const auto interrupted = [&] {
+    Relaxation result;
+    result.steps = phase.steps();
+    result.seconds = phase.seconds();
+    result.interrupted = state;
+    return result;
+  };
   simulation.watch_equilibrium(true);
-  simulation.set_control(held);
+  if (start.resume == nullptr) simulation.set_control(held);
   // The tolerances must hold at consecutive updates, so that a passing swing does not count.
   constexpr int required_checks = 3;
   // A state verified afterwards is first relaxed to half the tolerances: one that only just met
@@ -70,59 +92,81 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   const double margin = config.verify_steps > 0 ? config.margin : 1.0;
   Progress progress(logger, label, -std::log10(margin * config.tolerance), 10.0);
   const bool fire = config.method == Relaxer::fire;
+  // A resumed relaxation enters the stage it stopped in with the settings it stopped with.
+  bool resumed = start.resume != nullptr;
+  require_input(
+      !resumed || state.verifying || fire == state.fire.has_value(),
+      fmt::format("{}: the relaxation to resume was minimising {} FIRE, and dem.equilibrium.method is "
+                  "now '{}': resume with the method it ran with",
+                  label, fire ? "without" : "with", fire ? "fire" : "damped"));
   for (;;) {
-    with_damping(fire ? 0.0 : config.damping);
-    std::optional<Fire> minimiser;
-    if (fire) minimiser.emplace(simulation, config.fire_time_step_factor);
-    int passed = in_equilibrium(simulation, config, margin) ? 1 : 0;
-    const std::function<void()> turn = [&] { minimiser->update(); };
-    while (passed < required_checks) {
-      phase.advance_to_update(minimiser ? turn : std::function<void()>{});
-      passed = in_equilibrium(simulation, config, margin) ? passed + 1 : 0;
-      const double ratio = simulation.equilibrium().unbalanced_force_ratio;
-      if (phase.steps() % 5000 == 0) trace(simulation, logger, label, phase.steps());
-      progress.update(std::isfinite(ratio) && ratio > 0
-                          ? std::min(-std::log10(ratio), -std::log10(margin * config.tolerance))
-                          : 0.0);
+    if (!(resumed && state.verifying)) {
+      std::optional<Fire> minimiser;
+      if (!resumed) {
+        with_damping(fire ? 0.0 : config.damping);
+        if (fire) minimiser.emplace(simulation, config.fire_time_step_factor);
+        state.passed = in_equilibrium(simulation, config, margin) ? 1 : 0;
+      } else if (fire) {
+        minimiser.emplace(simulation, *state.fire);
+      }
+      resumed = false;
+      const std::function<void()> turn = [&] { minimiser->update(); };
+      while (state.passed < required_checks) {
+        phase.advance_to_update(minimiser ? turn : std::function<void()>{});
+        state.passed = in_equilibrium(simulation, config, margin) ? state.passed + 1 : 0;
+        const double ratio = simulation.equilibrium().unbalanced_force_ratio;
+        if (phase.steps() % 5000 == 0) trace(simulation, logger, label, phase.steps());
+        progress.update(std::isfinite(ratio) && ratio > 0
+                            ? std::min(-std::log10(ratio), -std::log10(margin * config.tolerance))
+                            : 0.0);
+        if (stop_here(minimiser)) return interrupted();
+      }
+      // A balanced state may still be unstable (a saddle that the damping only slows the way
+      // out of, or a creep that the servo would feed): it counts as static once, with the cell
+      // fixed and the damping it will run with afterwards, it stays balanced and keeps its mean
+      // stress for verify_steps.
+      if (minimiser) minimiser->end(); // the run's own time step again
+      if (config.verify_steps == 0) break;
+      simulation.set_control(fixed);
+      with_damping(loading_damping);
+      state.verifying = true;
+      state.start_stress = mean_stress_compression_positive(simulation.stress());
+      state.verified = 0;
     }
-    // A balanced state may still be unstable (a saddle that the damping only slows the way
-    // out of, or a creep that the servo would feed): it counts as static once, with the cell
-    // fixed and the damping it will run with afterwards, it stays balanced and keeps its mean
-    // stress for verify_steps.
-    if (minimiser) minimiser->end(); // the run's own time step again
-    if (config.verify_steps == 0) break;
-    simulation.set_control(fixed);
-    with_damping(loading_damping);
-    const double start_stress = mean_stress_compression_positive(simulation.stress());
-    bool stable = true;
-    std::int64_t verified = 0;
+    resumed = false;
+    bool stable = true; // a window is only ever interrupted while stable
     double drift = 0;
-    for (; verified < config.verify_steps && stable; verified += simulation.settings().control_interval) {
+    while (state.verified < config.verify_steps && stable) {
       phase.advance_to_update();
       if (phase.steps() % 5000 == 0) trace(simulation, logger, label + " (verifying)", phase.steps());
       const Equilibrium& e = simulation.equilibrium();
-      drift = mean_stress_compression_positive(simulation.stress()) / start_stress - 1.0;
+      drift = mean_stress_compression_positive(simulation.stress()) / state.start_stress - 1.0;
       stable = e.unbalanced_force_ratio < config.tolerance && e.unbalanced_torque_ratio < config.tolerance &&
                std::abs(drift) < config.stress_tolerance;
+      state.verified += simulation.settings().control_interval;
+      if (stable && stop_here(std::nullopt)) return interrupted();
     }
-    verifying_steps += verified;
+    state.verifying_steps += state.verified;
+    state.verifying = false;
     if (stable) break;
-    ++left_equilibrium;
+    ++state.windows_left;
     // Said, so that a progress that falls back from 100% is explained.
     logger->info(
         "{}: left equilibrium {} steps into the {}-step verification (unbalanced-force ratio {:.2e}, "
         "torque ratio {:.2e}, p drift {:.2e}); relaxing again ({} so far)",
-        label, verified, config.verify_steps, simulation.equilibrium().unbalanced_force_ratio,
-        simulation.equilibrium().unbalanced_torque_ratio, drift, left_equilibrium);
+        label, state.verified, config.verify_steps, simulation.equilibrium().unbalanced_force_ratio,
+        simulation.equilibrium().unbalanced_torque_ratio, drift, state.windows_left);
     simulation.set_control(held);
   }
   Relaxation result;
   result.steps = phase.steps();
-  result.verifying_steps = verifying_steps;
-  result.windows_left = left_equilibrium;
+  result.verifying_steps = state.verifying_steps;
+  result.windows_left = state.windows_left;
   result.seconds = phase.seconds();
   result.equilibrium = simulation.equilibrium();
   result.stress_error = std::abs(model::servo_error(loading, simulation.stress()));
+  logger->debug("{}: {} steps, from step {} to {}", label, result.steps,
+                simulation.step_count() - result.steps, simulation.step_count());
   phase.end();
   return result;
 }

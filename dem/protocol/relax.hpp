@@ -9,12 +9,36 @@
 
 #include "common/log.hpp"
 #include "dem/config.hpp"
+#include "dem/protocol/fire.hpp"
+#include "dem/protocol/phase.hpp"
 #include "dem/simulation.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace aniso::dem::protocol {
+
+/// Where a relaxation stopped at a control update (SIGTERM): with the simulation's state there,
+/// all it needs to continue to the bits of an uninterrupted one (a checkpoint's /relaxation
+/// group, dem/io/relaxation_state.hpp).
+struct RelaxationState {
+  std::int64_t steps = 0;           ///< taken so far
+  bool verifying = false;           ///< in a verification window, else minimising
+  int passed = 0;                   ///< minimising: consecutive control updates within the tolerances
+  double start_stress = 0;          ///< verifying: p when the window began [Pa]
+  std::int64_t verified = 0;        ///< verifying: steps of the window so far
+  std::int64_t verifying_steps = 0; ///< in the windows before this one
+  int windows_left = 0;             ///< windows the state did not stay static through
+  std::optional<FireState> fire;    ///< minimising with FIRE: its state
+  PhaseMemory memory;               ///< what the relaxation gives back when it ends
+};
+
+/// How a relaxation begins: afresh or continuing an interrupted one, and whether it may stop.
+struct RelaxationStart {
+  bool stoppable = false;                  ///< stop at a control update once stop_requested()
+  const RelaxationState* resume = nullptr; ///< continue this one (the simulation is its state)
+};
 
 struct Relaxation {
   std::int64_t steps = 0;
@@ -23,6 +47,8 @@ struct Relaxation {
   double seconds = 0;               ///< wall time
   Equilibrium equilibrium;          ///< at the end
   double stress_error = 0;          ///< |servo error| at the end
+  /// Set when it stopped on request: the simulation is left as it stood, mid-relaxation.
+  std::optional<RelaxationState> interrupted;
 };
 
 /// True when the last control update meets `margin` times the tolerances: force and torque ratios
@@ -33,7 +59,10 @@ bool in_equilibrium(const Simulation& simulation, const EquilibriumConfig& confi
 /// `max_steps`; then gives back the controller (its targets and servo memory) and the damping
 /// the simulation had, so that loading continues from the relaxed state. Throws
 /// ConvergenceError (exit 5) naming the ratio reached when the tolerances are not met in time.
+/// A stoppable relaxation checks stop_requested (collective) at every control update and, asked
+/// to, returns at once with `interrupted` set and nothing given back.
 Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig& config,
-                                std::int64_t max_steps, const Logger& logger, const std::string& label);
+                                std::int64_t max_steps, const Logger& logger, const std::string& label,
+                                const RelaxationStart& start = {});
 
 } // namespace aniso::dem::protocol

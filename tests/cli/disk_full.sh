@@ -35,7 +35,8 @@ expect_write_failure() {
   fi
 }
 
-expect_write_failure dem prepared.h5 "$build/dem/aniso-dem" prepare "${settings[@]}" --log-level warn
+# prepare's first write is the piece it keeps for a resume (prepare_seized_1_0.h5).
+expect_write_failure dem "prepare_seized_1_0.h5" "$build/dem/aniso-dem" prepare "${settings[@]}" --log-level warn
 expect_write_failure voxel image_prepared.h5 "$build/voxel/aniso-voxel" --input "$work/dem/prepared.h5" \
   --set voxel.output_dir="$work/voxel" --log-level warn
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -24,7 +25,29 @@ inline Vec3 random_vec3(RandomStream& stream, double low, double high) {
   return Vec3(stream.uniform(low, high), stream.uniform(low, high), stream.uniform(low, high));
 }
 
-/// Full checkpoint content: particle rows in id order, contacts sorted by (id_i, id_j), all valid.
+/// Places the particles at random in [0, region) of each axis, one after another, each where its
+/// inscribed sphere overlaps no earlier one's by 0.9 of the smaller radius across the periodic
+/// cell: the reader refuses a whole radius (common/h5/particle_separation.hpp).
+inline void place_apart(h5::Checkpoint& checkpoint, RandomStream& stream, const Vec3& region) {
+  h5::ParticleRows& p = checkpoint.particles;
+  const Vec3& lengths = checkpoint.cell.lengths;
+  const auto inscribed = [&](std::size_t k) { return 0.5 * p.diameter[k] * p.aspect_ratio[k]; };
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    for (bool apart = false; !apart;) {
+      p.position[k] = random_vec3(stream, 0, 1).cwiseProduct(region);
+      apart = true;
+      for (std::size_t j = 0; j < k && apart; ++j) {
+        Vec3 branch = p.position[k] - p.position[j];
+        for (int a = 0; a < 3; ++a)
+          branch[a] -= lengths[a] * std::round(branch[a] / lengths[a]);
+        apart = inscribed(k) + inscribed(j) - branch.norm() < 0.9 * std::min(inscribed(k), inscribed(j));
+      }
+    }
+  }
+}
+
+/// Full checkpoint content: particle rows in id order, contacts sorted by (id_i, id_j), all valid
+/// (placed apart in the first 0.01 m of each axis).
 inline h5::Checkpoint sample_checkpoint(std::uint64_t seed, std::size_t n_particles, std::size_t n_contacts,
                                         std::size_t n_streams) {
   RandomStream stream(seed, 0);
@@ -50,13 +73,13 @@ inline h5::Checkpoint sample_checkpoint(std::uint64_t seed, std::size_t n_partic
     p.aspect_ratio[k] = k % 5 == 0 ? 1.0 : stream.uniform(0.3, 1.0);
     p.mass[k] = stream.uniform(1e-6, 1e-5);
     p.inertia[k] = random_vec3(stream, 1e-13, 1e-12);
-    p.position[k] = random_vec3(stream, 0, 0.01);
     p.orientation[k] = Quat(stream.normal(), stream.normal(), stream.normal(), stream.normal()).normalized();
     p.velocity[k] = random_vec3(stream, -1, 1);
     p.angular_velocity[k] = random_vec3(stream, -100, 100);
     p.force[k] = random_vec3(stream, -1, 1);
     p.torque[k] = random_vec3(stream, -1e-3, 1e-3);
   }
+  place_apart(checkpoint, stream, Vec3::Constant(0.01));
   // Values whose bits a careless conversion would change.
   if (n_particles > 2) {
     p.velocity[1] = Vec3(-0.0, std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::max());

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Output folders keep one run each: a fresh load refuses a folder that holds another
 # loading run unless --overwrite (which never removes its own input); --resume refuses another
-# run's history, a prepared assembly, a checkpoint beyond what the history reaches and a history
-# of another schema version (exit 3); a second writer is refused while the first holds the
-# folder's lock, which no run leaves behind, failed or not; aniso-fabric refuses to write its
-# results over its input. Each refusal: exit 2, a message naming the problem, and no file of the
-# earlier run changed.
+# run's history, a prepared assembly, a checkpoint beyond what the history reaches (by its
+# covers_step or by its rows) and a history of another schema version (exit 3); a second writer
+# is refused while the first holds the folder's lock, which no run leaves behind, failed or not;
+# aniso-fabric refuses to write its results over its input. Each refusal: exit 2, a message
+# naming the problem, and no file of the earlier run changed.
 #
 # usage: run_folder.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -64,6 +64,23 @@ cp -r A short
   --set dem.load.final_strain=0.0015 --set 'dem.load.checkpoint_strains=[0.001]'
 expect resume_beyond_the_history "before the input checkpoint's step" \
   "$dem" load "${settings[@]}" --set dem.output_dir=short --input A/load_002.h5 --resume
+
+# A history whose covers_step claims the checkpoint but whose rows stop short of it (replaced by
+# an older copy, or edited) is refused by its rows: accepted, the finished history had a gap.
+cp -r A claimed
+/usr/bin/python3 - claimed/history.h5 <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    history = f["history"]
+    keep = len(history["step"]) // 2
+    for name in list(history):
+        data, attributes = history[name][:keep], dict(history[name].attrs)
+        del history[name]
+        history.create_dataset(name, data=data)
+        history[name].attrs.update(attributes)
+PY
+expect resume_past_the_history_rows "rows are missing" \
+  "$dem" load "${settings[@]}" --set dem.output_dir=claimed --input claimed/load_002.h5 --resume
 
 # A history of another schema version (another aniso-dem wrote it) is refused by name.
 cp -r A old_schema

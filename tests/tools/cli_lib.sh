@@ -36,3 +36,24 @@ small_checkpoint_and_image() {
   small_prepared_assembly "$1" dem
   "$1/voxel/aniso-voxel" --input dem/prepared.h5 --set voxel.output_dir=voxel --log-level warn
 }
+
+# stop_when_logged PATTERN LOG COMMAND...: runs COMMAND in the background (its own pid, not a
+# subshell's) with its output in LOG, sends it SIGTERM once LOG matches PATTERN (at once if it has
+# ended before), and sets stopped_code to its exit code. 143 is also what the shell reports for a
+# death by SIGTERM: the caller tells the two apart by the program's own stop message.
+stop_when_logged() {
+  local pattern=$1 log=$2
+  shift 2
+  "$@" >"$log" 2>&1 &
+  local pid=$!
+  for _ in $(seq 1 1200); do
+    grep -q -- "$pattern" "$log" && break
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.05
+  done
+  kill -TERM "$pid" 2>/dev/null || true # already ended: its exit code tells
+  set +e
+  wait "$pid"
+  stopped_code=$?
+  set -e
+}

@@ -37,9 +37,9 @@ protected:
     aniso::h5::Checkpoint checkpoint = aniso::test::sample_checkpoint(5, 40, 25, 1);
     // A dense cell (solid fraction about 0.35) instead of the sample's dilute one.
     const aniso::Vec3 lengths(6e-3, 5e-3, 5.5e-3);
-    for (auto& position : checkpoint.particles.position)
-      position = position.cwiseProduct(lengths / 0.01);
     checkpoint.cell.lengths = lengths;
+    aniso::RandomStream stream(5, 1);
+    aniso::test::place_apart(checkpoint, stream, lengths);
     // Aspect ratios down to 0.3 need a splice angle below 2 atan(0.3) = 0.58 rad.
     checkpoint.parameters.push_back({"ovoid_splice_angle", 0.5, "rad"});
     aniso::h5::write_checkpoint(path("no_d50.h5"), checkpoint, aniso::test::sample_provenance(1), self_);

@@ -45,6 +45,7 @@ def same_value(a, b, root_a, root_b):
 # name -> why it differs between runs that computed the same results
 NOT_RESULTS = {
     "source_hash": "a hash of the input file's bytes, whose /provenance holds a date",
+    "image_hash": "a hash of the voxel image file's bytes, whose /provenance holds a date",
     "seconds": "the wall time of a run (aniso-lbm's /permeability/runs/seconds)",
     "run_id": "names one loading run (date and random bits): two runs of one config get two",
     "timing": "where a run's wall time went (history.h5's /timing group)",
