@@ -4,9 +4,11 @@
 # checkpoints it wrote before intact; `--resume` from that file ends exactly where an
 # uninterrupted run ends (particles, contacts and the history, to the bit).
 #
-# usage: interrupt_resume.sh BUILD_DIR WORK_DIR
+# usage: interrupt_resume.sh BUILD_DIR WORK_DIR [--set key=value ...]
+#   further arguments are extra settings (another damping, say).
 set -euo pipefail
 build=$1 work=$2
+shift 2
 rm -rf "$work"
 mkdir -p "$work/whole" "$work/cut"
 settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycles=1
@@ -15,7 +17,7 @@ settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycle
           --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
           --set dem.equilibrium.at_checkpoints=false
           --set dem.load.final_strain=0.05 --set 'dem.load.checkpoint_strains=[0.002, 0.05]'
-          --set dem.load.history_interval=1e-3)
+          --set dem.load.history_interval=1e-3 "$@")
 dem=$build/dem/aniso-dem
 "$dem" prepare "${settings[@]}" --set dem.output_dir="$work" --log-level warn
 "$dem" load "${settings[@]}" --set dem.output_dir="$work/whole" --input "$work/prepared.h5" --log-level warn
