@@ -57,3 +57,20 @@ stop_when_logged() {
   stopped_code=$?
   set -e
 }
+
+# expect_same_state LABEL A.h5 B.h5: the two checkpoints hold the same particles, contacts and cell
+# to the bit (h5diff); otherwise prints the first differences and sets status=1.
+expect_same_state() {
+  local label=$1 a=$2 b=$3 group
+  for group in /particles /contacts /cell; do
+    h5diff "$a" "$b" "$group" "$group" >"$b.diff" 2>&1 ||
+      { echo "FAIL: $label: $group of $b differs from $a:"; head -5 "$b.diff"; status=1; }
+  done
+}
+
+# expect_same_history LABEL A B: two loading runs' history.h5 hold the same rows to the bit.
+expect_same_history() {
+  local label=$1 a=$2 b=$3
+  h5diff "$a" "$b" /history /history >"$b.diff" 2>&1 ||
+    { echo "FAIL: $label: the history $b differs from $a:"; head -5 "$b.diff"; status=1; }
+}
