@@ -4,6 +4,7 @@
 #include "common/h5/atomic_write.hpp"
 #include "common/h5/file.hpp"
 #include "common/h5/particle_separation.hpp"
+#include "common/root_only.hpp"
 
 #include <fmt/format.h>
 
@@ -698,7 +699,7 @@ void ContactRows::resize(std::size_t n) {
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& local, const Provenance& provenance,
-                      const mpi::Comm& comm) {
+                      const mpi::Comm& comm, const std::function<void(File&)>& add) {
   const std::string prefix = "write_checkpoint " + path + ": ";
   const ParticleRows& particles = local.particles;
   const ContactRows& contacts = local.contacts;
@@ -769,6 +770,13 @@ void write_checkpoint(const std::string& path, const Checkpoint& local, const Pr
   write_content(file, local, provenance, with_source_ids, n_particles, n_contacts, particle_rows,
                 contact_row_selection);
   file.close();
+  if (add) {
+    run_on_root(comm, [&] {
+      File serial = File::open(atomic.temp_path(), File::Access::read_write);
+      add(serial);
+      serial.close();
+    });
+  }
   atomic.commit();
 }
 

@@ -5,12 +5,14 @@
 // contacts in (id_i, id_j) order, whatever the number of ranks that wrote them,
 // so that files written by 1 or N ranks hold the same data.
 
+#include "common/h5/file.hpp"
 #include "common/h5/provenance.hpp"
 #include "common/mpi.hpp"
 #include "common/tensor.hpp"
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -107,8 +109,10 @@ struct Checkpoint {
 
 /// Writes a checkpoint atomically (temporary name, flush, rename), collectively on `comm`.
 /// Each rank passes the rows it holds; together the particle ids must be 0..N-1 exactly once.
+/// `add` (if any) then writes more groups into the complete file, on rank 0, before it appears
+/// under `path`: the file never exists without them (an interrupted run's state, say).
 void write_checkpoint(const std::string& path, const Checkpoint& local, const Provenance& provenance,
-                      const mpi::Comm& comm);
+                      const mpi::Comm& comm, const std::function<void(File&)>& add = {});
 
 /// Reads and validates a checkpoint; every rank receives all rows. Throws FileError naming
 /// the file and the dataset on any problem (version, missing dataset, shape, non-finite value).

@@ -68,9 +68,10 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, const CheckpointLabel
 }
 
 h5::Checkpoint write_checkpoint(const std::string& path, const Simulation& simulation,
-                                const CheckpointLabels& labels, const h5::Provenance& provenance) {
+                                const CheckpointLabels& labels, const h5::Provenance& provenance,
+                                const std::function<void(h5::File&)>& add) {
   h5::Checkpoint checkpoint = to_checkpoint(simulation, labels);
-  h5::write_checkpoint(path, checkpoint, provenance, simulation.comm());
+  h5::write_checkpoint(path, checkpoint, provenance, simulation.comm(), add);
   return checkpoint;
 }
 

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,7 +27,8 @@ h5::Checkpoint to_checkpoint(const Simulation& simulation, const CheckpointLabel
 
 /// Writes the simulation's state to `path` atomically (collective) and returns what was written.
 h5::Checkpoint write_checkpoint(const std::string& path, const Simulation& simulation,
-                                const CheckpointLabels& labels, const h5::Provenance& provenance);
+                                const CheckpointLabels& labels, const h5::Provenance& provenance,
+                                const std::function<void(h5::File&)>& add = {});
 
 /// Rebuilds a simulation that continues exactly where the checkpoint was written, decomposed
 /// over `comm` (collective; every rank passes the whole checkpoint). FileError naming `path`

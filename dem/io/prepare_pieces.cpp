@@ -1,7 +1,6 @@
 #include "dem/io/prepare_pieces.hpp"
 
 #include "common/error.hpp"
-#include "common/h5/atomic_write.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "common/h5/content_hash.hpp"
 #include "common/h5/file.hpp"
@@ -77,19 +76,14 @@ void PreparePieces::write(const std::string& file_path, const PieceName& piece, 
                           const std::function<void(h5::Group&)>& fill) const {
   if (folder_.empty()) return;
   // The checkpoint and its /prepare group appear together or not at all.
-  h5::AtomicFile atomic(file_path, comm_);
-  write_checkpoint(atomic.temp_path(), simulation, {rng_state, {}}, provenance_);
-  run_on_root(comm_, [&] {
-    h5::File file = h5::File::open(atomic.temp_path(), h5::File::Access::read_write);
+  write_checkpoint(file_path, simulation, {rng_state, {}}, provenance_, [&](h5::File& file) {
     h5::Group group = file.create_group(prepare_group);
     group.write_attribute("piece", kind_name(piece.kind));
     group.write_attribute<std::int32_t>("cycle", piece.cycle);
     group.write_attribute<std::int32_t>("refinement", piece.refinement);
     group.write_attribute("config_hash", config_hash_);
     fill(group);
-    file.close();
   });
-  atomic.commit();
 }
 
 Simulation PreparePieces::read(const std::string& file_path, const PieceName& piece,

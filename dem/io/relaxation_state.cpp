@@ -1,9 +1,7 @@
 #include "dem/io/relaxation_state.hpp"
 
 #include "common/error.hpp"
-#include "common/h5/atomic_write.hpp"
 #include "common/h5/file.hpp"
-#include "common/root_only.hpp"
 #include "common/units.hpp"
 #include "dem/io/parameters.hpp"
 
@@ -132,17 +130,11 @@ void write_interrupted_checkpoint(const std::string& path, const Simulation& sim
                                   const InterruptedRelaxation* relaxation) {
   // The checkpoint and its /relaxation group appear under `path` together or not at all: a file
   // without the group would resume as if no relaxation were under way.
-  h5::AtomicFile atomic(path, simulation.comm());
-  write_checkpoint(atomic.temp_path(), simulation, labels, provenance);
-  if (relaxation != nullptr) {
-    run_on_root(simulation.comm(), [&] {
-      h5::File file = h5::File::open(atomic.temp_path(), h5::File::Access::read_write);
-      h5::Group group = file.create_group(group_name);
-      write_relaxation(group, *relaxation);
-      file.close();
-    });
-  }
-  atomic.commit();
+  write_checkpoint(path, simulation, labels, provenance, [&](h5::File& file) {
+    if (relaxation == nullptr) return;
+    h5::Group group = file.create_group(group_name);
+    write_relaxation(group, *relaxation);
+  });
 }
 
 std::optional<InterruptedRelaxation> read_interrupted_relaxation(const std::string& path) {
