@@ -2,7 +2,8 @@
 # `aniso-dem relax`: a checkpoint written at OVAL's increment tolerance
 # (1e-2, no verified relaxation) loses about a fifth of p when its cell is held still; relaxed
 # with its own loading control it holds p within 1e-3 over the same hold, at the same strain and
-# a mean stress within the servo's tolerance, with the same bits on 1 and 2 ranks. Writing over
+# a mean stress within the servo's tolerance, with the same bits on 1 and 2 ranks; a hold as long
+# as its verification window replays that window. Writing over
 # the input is refused and the input is kept.
 #
 # usage: relax_checkpoint.sh BUILD_DIR WORK_DIR
@@ -22,6 +23,13 @@ expect_exit 5 hold_loose "above --max-drift" "$dem" hold --input load/load_000.h
 expect_exit 0 relax "relax of 'load/load_000.h5'" "$dem" relax --input load/load_000.h5 \
   --output relaxed/load_000.h5 --set dem.equilibrium.tolerance=1e-3
 expect_exit 0 hold_relaxed "hold of" "$dem" hold --input relaxed/load_000.h5 --steps 10000 --max-drift 1e-3
+# The written state is the one the verification window began from: a hold as long as the window
+# replays it, to the drift the relaxation logged (a hold of the window's end state drifts otherwise).
+window=$(sed -n 's/.*static through the 20000-step verification at a fixed cell (p drift \([^,]*\),.*/\1/p' relax.log)
+expect_exit 0 hold_window "hold of" "$dem" hold --input relaxed/load_000.h5 --steps 20000
+replayed=$(sed -n 's/.*hold of .* (drift \([^,]*\),.*/\1/p' hold_window.log)
+[ -n "$window" ] && [ "$window" = "$replayed" ] ||
+  { echo "FAIL: the window's p drift '$window' is not replayed by a 20000-step hold ('$replayed')"; status=1; }
 
 # Same strain along the loading axis, p at the servo's target, the equilibrium ratios recorded.
 /usr/bin/python3 - load/load_000.h5 relaxed/load_000.h5 relax.log <<'PY' || status=1
