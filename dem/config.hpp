@@ -89,9 +89,17 @@ struct EquilibriumConfig {
   double damping = 0.1;              ///< global damping ratio while relaxing (Relaxer::damped)
   double fire_time_step_factor = 1;  ///< largest FIRE time step, in the run's steps
   std::int64_t verify_steps = 20000; ///< the tolerances must then hold this long without extra damping
-  double margin = 0.1;               ///< a verified relaxation first reaches this fraction of the tolerances
-  std::int64_t max_steps = 500000;   ///< a relaxation that needs more stops with exit 5
-  bool at_checkpoints = true;        ///< relax before writing each load checkpoint
+  /// A window also fails when the kinetic/elastic ratio grows this many times above its lowest
+  /// value in the window (no lower than kinetic_floor): an unstable balance (0: not checked, the
+  /// default; docs/methods/dem.md, "Static equilibrium").
+  double kinetic_growth = 0;
+  double kinetic_floor = 1e-8; ///< kinetic/elastic ratio below which its growth does not count
+  /// After a window failed on the kinetic growth, time steps of the run's own dynamics with the
+  /// servo on, so that the unstable balance falls to another before minimising again.
+  std::int64_t escape_steps = 20000;
+  double margin = 0.1;             ///< a verified relaxation first reaches this fraction of the tolerances
+  std::int64_t max_steps = 500000; ///< a relaxation that needs more stops with exit 5
+  bool at_checkpoints = true;      ///< relax before writing each load checkpoint
 };
 
 struct DemConfig {

@@ -421,6 +421,23 @@ const std::vector<Parameter>& parameters() {
        .range = Range::closed(0, 1e9),
        .help = "time steps the tolerances must then keep holding with the damping of the run (an unstable "
                "balance fails this and relaxes on)"},
+      {.key = "dem.equilibrium.kinetic_growth",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::kinetic_growth>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 1e12),
+       .help = "a verification window also fails when the kinetic/elastic energy ratio grows this many times "
+               "above its lowest value in the window past its first tenth: the balance is unstable (0: not "
+               "checked)"},
+      {.key = "dem.equilibrium.kinetic_floor",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::kinetic_floor>,
+       .unit = units::none,
+       .range = Range::open(0.0, 1.0),
+       .help = "kinetic/elastic energy ratio below which its growth in a window does not count"},
+      {.key = "dem.equilibrium.escape_steps",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::escape_steps>,
+       .range = Range::closed(0, 1e9),
+       .help = "after a window failed on dem.equilibrium.kinetic_growth, time steps of the run's own "
+               "dynamics with the servo on (the unstable balance falls to another) before minimising again"},
       {.key = "dem.equilibrium.margin",
        .config = &member<&D::equilibrium, &EquilibriumConfig::margin>,
        .unit = units::none,

@@ -15,6 +15,7 @@ namespace {
 constexpr const char* group_name = "relaxation";
 constexpr const char* minimising = "minimising";
 constexpr const char* verifying = "verifying";
+constexpr const char* escaping = "escaping";
 
 void write_vector(h5::Group& group, const std::string& name, const Vec3& v, std::string_view units) {
   const std::array<double, 3> values{v[0], v[1], v[2]};
@@ -76,7 +77,8 @@ void write_relaxation(h5::Group& group, const InterruptedRelaxation& relaxation)
   group.write_attribute("next_history", relaxation.next_history);
   group.write_attribute<std::int64_t>("next_checkpoint", relaxation.next_checkpoint);
   group.write_attribute<std::int64_t>("steps", s.steps);
-  group.write_attribute("stage", s.verifying ? verifying : minimising);
+  group.write_attribute("stage", s.verifying ? verifying : (s.escaping ? escaping : minimising));
+  group.write_attribute<std::int64_t>("escaped", s.escaped);
   group.write_attribute<std::int32_t>("passed", s.passed);
   group.write_attribute_with_units("start_stress", s.start_stress, units::pascal);
   group.write_attribute<std::int64_t>("verified", s.verified);
@@ -104,9 +106,12 @@ InterruptedRelaxation read_relaxation(const h5::Group& group) {
   relaxation.next_checkpoint = group.read_attribute<std::int64_t>("next_checkpoint");
   s.steps = group.read_attribute<std::int64_t>("steps");
   const std::string stage = group.read_string_attribute("stage");
-  if (stage != minimising && stage != verifying)
-    group.fail("attribute stage: '" + stage + "', expected minimising or verifying");
+  if (stage != minimising && stage != verifying && stage != escaping)
+    group.fail("attribute stage: '" + stage + "', expected minimising, verifying or escaping");
   s.verifying = stage == verifying;
+  s.escaping = stage == escaping;
+  // Files written before the escape existed have none under way.
+  s.escaped = group.has_attribute("escaped") ? group.read_attribute<std::int64_t>("escaped") : 0;
   s.passed = group.read_attribute<std::int32_t>("passed");
   s.start_stress = group.read_attribute<double>("start_stress");
   s.verified = group.read_attribute<std::int64_t>("verified");

@@ -4,7 +4,9 @@
 // their servo, and the fluctuating motion is damped globally until the
 // unbalanced-force ratio (dem/equilibrium.hpp) and the servo error are both
 // below half their tolerances; then, with every axis of the cell fixed and the run's
-// own damping, the state must stay balanced and keep p for verify_steps. Kuhn's OVAL cycles each strain
+// own damping, the state must stay balanced and keep p for verify_steps (and, with
+// kinetic_growth, not speed up; a state that does runs escape_steps with the servo on before
+// minimising again). Kuhn's OVAL cycles each strain
 // increment the same way until the mean force imbalance is small (shared/reference/ovoid.md).
 
 #include "common/log.hpp"
@@ -24,7 +26,9 @@ namespace aniso::dem::protocol {
 /// group, dem/io/relaxation_state.hpp).
 struct RelaxationState {
   std::int64_t steps = 0;           ///< taken so far
-  bool verifying = false;           ///< in a verification window, else minimising
+  bool verifying = false;           ///< in a verification window, else minimising or escaping
+  bool escaping = false;            ///< after a failed window, letting the state fall with the servo on
+  std::int64_t escaped = 0;         ///< escaping: steps of it so far
   int passed = 0;                   ///< minimising: consecutive control updates within the tolerances
   double start_stress = 0;          ///< verifying: p when the window began [Pa]
   std::int64_t verified = 0;        ///< verifying: steps of the window so far

@@ -5,7 +5,8 @@
 # that file writes Y with the bits of the uninterrupted 1-rank run (relax resumed on 2 ranks). The
 # stop comes from ANISO_TEST_STOP_AT_STEP (common/stop_request.hpp), acted on at the first control
 # update from that step on: relax is stopped in its verification window, consolidate while
-# minimising, where the uninterrupted runs' debug logs place them.
+# minimising and relax with dem.equilibrium.kinetic_growth in the escape after a window it left,
+# where the uninterrupted runs' debug logs place them.
 #
 # usage: interrupt_relax.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -20,30 +21,45 @@ small_prepared_assembly "$build" dem
   --set dem.load.final_strain=0.01 --set 'dem.load.checkpoint_strains=[0.01]' \
   --set dem.equilibrium.at_checkpoints=false --set dem.load.increment=1e-3 --log-level warn
 
-# interrupted RANKS COMMAND INPUT LABEL PERCENT SETTINGS...: the whole run, and one stopped
-# PERCENT of the way through it and resumed on RANKS ranks, compared.
+# interrupted RANKS COMMAND INPUT LABEL WHERE SETTINGS...: the whole run, and one stopped at WHERE
+# (a percentage of its steps, or 'escape': halfway through its first escape after a window left on
+# its kinetic energy) and resumed on RANKS ranks, compared. NAME (default COMMAND) names the files.
 interrupted() {
-  local ranks=$1 command=$2 input=$3 label=$4 percent=$5
+  local ranks=$1 command=$2 input=$3 label=$4 where=$5
   shift 5
-  "$dem" "$command" --input "$input" --output "whole/$command.h5" "$@" --log-level debug >"$command-whole.log" 2>&1
-  local steps from
-  read -r steps from < <(sed -n "s/.*$label: \([0-9]*\) steps, from step \([0-9]*\).*/\1 \2/p" "$command-whole.log") ||
+  local name=${NAME:-$command}
+  "$dem" "$command" --input "$input" --output "whole/$name.h5" "$@" --log-level debug >"$name-whole.log" 2>&1
+  local steps from stop_at
+  read -r steps from < <(sed -n "s/.*$label: \([0-9]*\) steps, from step \([0-9]*\).*/\1 \2/p" "$name-whole.log") ||
     { echo "FAIL: no '$label: N steps, from step S' in the debug log"; exit 1; }
-  local stop_at=$((from + steps * percent / 100))
+  if [ "$where" = escape ]; then
+    local escape_steps escape_from
+    read -r escape_steps escape_from < <(sed -n "s/.*$label: escaping for \([0-9]*\) steps from step \([0-9]*\).*/\1 \2/p" \
+      "$name-whole.log" | head -1) || { echo "FAIL: no escape in the debug log of $name"; exit 1; }
+    stop_at=$((escape_from + escape_steps / 2))
+  else
+    stop_at=$((from + steps * where / 100))
+  fi
   local before
   before=$(md5sum <"$input")
-  expect_exit 143 "$command-cut" \
-    "$command: stopped on SIGTERM at step [0-9]* .*wrote cut/${command}_interrupted.h5; continue with --input cut/${command}_interrupted.h5 --output cut/$command.h5 --resume" \
-    env ANISO_TEST_STOP_AT_STEP="$stop_at" "$dem" "$command" --input "$input" --output "cut/$command.h5" "$@"
-  [ -f "cut/$command.h5" ] && { echo "FAIL: $command wrote its output though stopped"; status=1; }
+  expect_exit 143 "$name-cut" \
+    "$command: stopped on SIGTERM at step [0-9]* .*wrote cut/${name}_interrupted.h5; continue with --input cut/${name}_interrupted.h5 --output cut/$name.h5 --resume" \
+    env ANISO_TEST_STOP_AT_STEP="$stop_at" "$dem" "$command" --input "$input" --output "cut/$name.h5" "$@"
+  [ -f "cut/$name.h5" ] && { echo "FAIL: $command wrote its output though stopped"; status=1; }
   [ "$(md5sum <"$input")" = "$before" ] || { echo "FAIL: $command changed its input"; status=1; }
-  echo "$command stopped at step $stop_at, $((stop_at - from)) of its $steps steps"
-  mpiexec --oversubscribe -n "$ranks" "$dem" "$command" --input "cut/${command}_interrupted.h5" --output "cut/$command.h5" \
+  echo "$name stopped at step $stop_at, $((stop_at - from)) of its $steps steps"
+  mpiexec --oversubscribe -n "$ranks" "$dem" "$command" --input "cut/${name}_interrupted.h5" --output "cut/$name.h5" \
     --resume "$@" --log-level warn
-  expect_same_state "$command interrupted and resumed" "whole/$command.h5" "cut/$command.h5"
+  expect_same_state "$name interrupted and resumed" "whole/$name.h5" "cut/$name.h5"
 }
 interrupted 2 relax load/load_000.h5 "relax" 90 --set dem.equilibrium.tolerance=1e-3
 interrupted 1 consolidate dem/prepared.h5 "consolidation to p0" 2 --set dem.prepare.confining_pressure=150e3
+# With the kinetic-growth check (2 here, so that this small state leaves windows on it), stopped
+# inside the escape that follows such a window: the file holds stage 'escaping' and how far it got.
+NAME=relax_kinetic interrupted 1 relax load/load_000.h5 "relax" escape --set dem.equilibrium.tolerance=1e-3 \
+  --set dem.equilibrium.kinetic_growth=2
+h5dump -a /relaxation/stage cut/relax_kinetic_interrupted.h5 | grep -q '"escaping"' ||
+  { echo "FAIL: the file stopped in the escape does not say so (/relaxation stage)"; status=1; }
 
 # A fresh run refuses a file stopped mid-relaxation (its control is the relaxation's), and a
 # resume refuses a file that is not one.
