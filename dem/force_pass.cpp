@@ -243,7 +243,7 @@ void restore_contact_records(std::span<const StoredContact> contacts, const data
     // normal: another start gives other last bits, so the stored normal, overlap and point stand.
     history.normal = stored.normal;
     double hertz_radius = neighbors.properties()[slot].effective_radius;
-    if (input.hertz_radius == model::HertzRadius::curvature) {
+    if (input.hertz_radius != model::HertzRadius::halfwidth) {
       const model::ConvexBody a =
           input.shapes->body(particles.radius[i], particles.aspect_ratio[i], particles.orientation[i]);
       const model::ConvexBody b =

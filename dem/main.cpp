@@ -37,10 +37,10 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
       "consolidate", "consolidate an imported assembly isotropically to dem.prepare.confining_pressure with "
                      "the loading's friction, relaxed to the verified equilibrium (--output: a prepared "
                      "assembly for load)");
-  auto* import = app.add_subcommand(
-      "import",
-      "a sphere assembly from a LAMMPS/LIGGGHTS data file, YADE's text export or a DEMPLA D-file, with the "
-      "tangential forces of a contact dump, as a checkpoint (--output)");
+  auto* import =
+      app.add_subcommand("import", "an assembly from a LAMMPS/LIGGGHTS data file or YADE's text export "
+                                   "(spheres) or a DEMPLA D-file (spheres or ovoids), with the "
+                                   "tangential forces of a contact dump, as a checkpoint (--output)");
   auto* export_ = app.add_subcommand(
       "export", "a checkpoint as a LAMMPS data file (and contact dump), or as XDMF for ParaView "
                 "(particles and force chains)");

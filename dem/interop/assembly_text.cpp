@@ -150,7 +150,7 @@ void require_spheres(const h5::Checkpoint& checkpoint, const std::string& why) {
 
 } // namespace
 
-SphereAssembly read_lammps_data(const std::string& path) {
+ImportedAssembly read_lammps_data(const std::string& path) {
   const TextLines lines(path);
   if (lines.size() == 0) throw FileError(path + ": empty file: not a LAMMPS data file");
   Header header;
@@ -163,7 +163,7 @@ SphereAssembly read_lammps_data(const std::string& path) {
   const Vec3 lengths = header.high - header.low;
   if (!(lengths.minCoeff() > 0)) throw FileError(path + ": the box has a length <= 0");
 
-  SphereAssembly result;
+  ImportedAssembly result;
   result.source = path;
   result.format = "lammps";
   result.lengths = lengths;
@@ -256,13 +256,13 @@ SphereAssembly read_lammps_data(const std::string& path) {
   return result;
 }
 
-SphereAssembly read_yade_text(const std::string& path, const Vec3& lengths) {
+ImportedAssembly read_yade_text(const std::string& path, const Vec3& lengths) {
   require_input(lengths.minCoeff() > 0 && std::isfinite(lengths.sum()),
                 fmt::format("import of '{}': the cell lengths must be > 0 (YADE's text export does not "
                             "carry the periodic cell: give it with --cell LX,LY,LZ)",
                             path));
   const TextLines lines(path);
-  SphereAssembly result;
+  ImportedAssembly result;
   result.source = path;
   result.format = "yade";
   result.lengths = lengths;
@@ -286,9 +286,9 @@ SphereAssembly read_yade_text(const std::string& path, const Vec3& lengths) {
   return result;
 }
 
-SphereAssembly read_dempla_dfile(const std::string& path) {
+ImportedAssembly read_dempla_dfile(const std::string& path) {
   const TextLines lines(path);
-  constexpr int sphere_code = 4;
+  constexpr int sphere_code = 4, ovoid_code = 5;
   const auto words_of = [&](std::size_t k, std::size_t expected, const char* what) {
     if (k >= lines.size()) lines.fail(k, fmt::format("the file ends before the {} line", what));
     const std::vector<std::string> w = split_words(lines[k]);
@@ -297,14 +297,15 @@ SphereAssembly read_dempla_dfile(const std::string& path) {
     return w;
   };
   const int shape = number<int>(lines, 0, words_of(0, 1, "shape code")[0], "shape code");
-  if (shape != sphere_code)
-    lines.fail(0, fmt::format("shape code {}: aniso imports DEMPLA's spheres (code 4) only; ovoids (5) "
-                              "and the 2D and clustered shapes are not read",
+  if (shape != sphere_code && shape != ovoid_code)
+    lines.fail(0, fmt::format("shape code {}: aniso imports DEMPLA's spheres (code 4) and ovoids (5); the 2D "
+                              "and clustered shapes are not read",
                               shape));
+  const bool ovoids = shape == ovoid_code;
   const std::vector<std::string> head = words_of(1, 4, "count and cell");
   const auto count = number<std::int64_t>(lines, 1, head[0], "particle count");
   if (count <= 0) lines.fail(1, fmt::format("particle count {}, expected > 0", count));
-  SphereAssembly result;
+  ImportedAssembly result;
   result.source = path;
   result.format = "dempla";
   for (int a = 0; a < 3; ++a) {
@@ -317,22 +318,54 @@ SphereAssembly read_dempla_dfile(const std::string& path) {
                                 "must be 0)",
                                 offset));
   std::size_t k = 3;
+  if (ovoids) {
+    const double degrees = number<double>(lines, k, words_of(k, 1, "splice angle")[0], "splice angle");
+    if (!(degrees > 0 && degrees < 90))
+      lines.fail(k, fmt::format("splice angle {:g} degrees, expected between 0 and 90", degrees));
+    result.splice_angle = degrees * std::numbers::pi / 180;
+    ++k;
+  }
+  // A particle's values in order, whatever the line breaks (Fortran's list-directed read).
+  const std::size_t per_particle = ovoids ? 7 : 4;
+  std::vector<double> values;
+  std::size_t row_line = k;
   for (; k < lines.size() && static_cast<std::int64_t>(result.size()) < count; ++k) {
-    if (blank(lines[k])) continue;
-    const std::vector<std::string> w = words_of(k, 4, "sphere (radius x1 x2 x3)");
-    const double radius = number<double>(lines, k, w[0], "radius");
-    if (!(radius > 0)) lines.fail(k, fmt::format("radius {}, expected > 0", w[0]));
-    Vec3 x;
-    for (std::size_t a = 0; a < 3; ++a)
-      x[static_cast<int>(a)] = number<double>(lines, k, w[a + 1], "position");
+    const std::vector<std::string> words = split_words(lines[k]);
+    if (values.empty()) row_line = k;
+    for (const std::string& word : words)
+      values.push_back(number<double>(lines, k, word, ovoids ? "ovoid value" : "sphere value"));
+    if (values.size() < per_particle) continue;
+    if (values.size() > per_particle)
+      lines.fail(k, fmt::format("{} values for one particle, expected {} ({})", values.size(), per_particle,
+                                ovoids ? "half-width aspect x1 x2 x3 gamma1 gamma2" : "radius x1 x2 x3"));
+    const double radius = values[0];
+    if (!(radius > 0)) lines.fail(row_line, fmt::format("radius {:g}, expected > 0", radius));
+    const std::size_t at = ovoids ? 2 : 1;
     result.id.push_back(result.id.size() + 1);
     result.diameter.push_back(2 * radius);
-    result.position.push_back(x);
+    result.position.emplace_back(values[at], values[at + 1], values[at + 2]);
+    if (ovoids) {
+      const double aspect = values[1];
+      if (!(aspect > 0 && aspect <= 1))
+        lines.fail(row_line,
+                   fmt::format("aspect ratio {:g}: aniso's ovoids are oblate (0 < alpha <= 1)", aspect));
+      if (result.size() == 1) result.aspect_ratio = aspect;
+      if (aspect != result.aspect_ratio)
+        lines.fail(row_line,
+                   fmt::format("aspect ratio {:.17g} where the first particle has {:.17g}: aniso holds "
+                               "one aspect ratio per assembly",
+                               aspect, result.aspect_ratio));
+      const double polar = values[5] * std::numbers::pi / 180, azimuth = values[6] * std::numbers::pi / 180;
+      result.axis.emplace_back(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
+                               std::cos(polar));
+    }
+    values.clear();
   }
+  if (!values.empty()) lines.fail(row_line, "the file ends inside a particle's row");
   if (static_cast<std::int64_t>(result.size()) < count)
-    throw FileError(fmt::format("{}: {} spheres, the header says {}", path, result.size(), count));
+    throw FileError(fmt::format("{}: {} particles, the header says {}", path, result.size(), count));
   for (; k < lines.size(); ++k)
-    if (!blank(lines[k])) lines.fail(k, fmt::format("more rows than the {} spheres of the header", count));
+    if (!blank(lines[k])) lines.fail(k, fmt::format("more rows than the {} particles of the header", count));
   result.velocity.assign(result.size(), Vec3::Zero());
   result.angular_velocity.assign(result.size(), Vec3::Zero());
   return result;
@@ -351,7 +384,7 @@ double median_by_volume(std::vector<double> diameters) {
   return diameters.back();
 }
 
-SphereAssembly scaled_to_d50(SphereAssembly assembly, double d50) {
+ImportedAssembly scaled_to_d50(ImportedAssembly assembly, double d50) {
   require_input(d50 > 0 && std::isfinite(d50), fmt::format("import: --d50 {:g}, expected > 0 [m]", d50));
   const double factor = d50 / median_by_volume(assembly.diameter);
   assembly.lengths *= factor;
@@ -410,18 +443,54 @@ void write_lammps_data(const std::string& path, const h5::Checkpoint& checkpoint
   h5::write_text_atomically(path, text);
 }
 
+namespace {
+
+// DEMPLA's ovoid axis angles (its D-file, kshape 5): axis = (sin g1 cos g2, sin g1 sin g2, cos g1), in
+// degrees. The axis is the body z of aniso's ovoid turned into the world frame; its sign does not
+// matter (the shape is symmetric about its mid-plane).
+std::pair<double, double> dempla_axis_angles(const Quat& orientation) {
+  const Vec3 axis = (orientation * Vec3::UnitZ()).normalized();
+  constexpr double degrees = 180.0 / std::numbers::pi;
+  return {std::acos(std::clamp(axis.z(), -1.0, 1.0)) * degrees, std::atan2(axis.y(), axis.x()) * degrees};
+}
+
+} // namespace
+
 void write_dempla_dfile(const std::string& path, const h5::Checkpoint& checkpoint) {
   const auto& p = checkpoint.particles;
-  require_spheres(checkpoint, "the DEMPLA export writes spheres (D-file shape 4) only");
+  require_input(p.size() > 0, "export: the checkpoint holds no particles");
+  // DEMPLA gives one aspect ratio to the whole assembly (its ovoid D-file writer says so), as aniso does.
+  const double aspect = p.aspect_ratio.front();
+  for (std::size_t k = 0; k < p.size(); ++k)
+    require_input(
+        p.aspect_ratio[k] == aspect,
+        fmt::format("export: particle {} has aspect ratio {:g} and particle {} {:g}: a DEMPLA D-file "
+                    "holds one aspect ratio",
+                    p.id[k], p.aspect_ratio[k], p.id.front(), aspect));
+  const bool spheres = aspect == 1.0;
   const Vec3& lengths = checkpoint.cell.lengths;
-  // The column widths of DEMPLA's own writer (octave/Write_Dfile_Spheres.m), which its reader expects.
-  std::string text = fmt::format("4\n{:6d}{:25.17e}{:25.17e}{:25.17e}\n      {:25.17e}{:25.17e}{:25.17e}\n",
-                                 p.size(), lengths.x(), lengths.y(), lengths.z(), 0.0, 0.0, 0.0);
+  // The column widths of DEMPLA's own writers (octave/Write_Dfile_Spheres.m, Write_Dfile_Ovoids.m),
+  // which its reader expects: shape code 4 (spheres) or 5 (ovoids), count and cell, offsets, and for
+  // ovoids the splice angle in degrees.
+  std::string text =
+      fmt::format("{}\n{:6d}{:25.17e}{:25.17e}{:25.17e}\n      {:25.17e}{:25.17e}{:25.17e}\n",
+                  spheres ? 4 : 5, p.size(), lengths.x(), lengths.y(), lengths.z(), 0.0, 0.0, 0.0);
+  if (!spheres)
+    text += fmt::format("{:25.17e}\n", h5::parameter(checkpoint, h5::parameter_name::splice_angle, "") *
+                                           180.0 / std::numbers::pi);
   for (std::size_t k = 0; k < p.size(); ++k) {
     Vec3 x = p.position[k];
     for (int a = 0; a < 3; ++a)
       x[a] -= lengths[a] * std::floor(x[a] / lengths[a]);
-    text += fmt::format("{:25.17e}{:25.17e}{:25.17e}{:25.17e}\n", p.diameter[k] / 2, x.x(), x.y(), x.z());
+    // The radius is the mid-plane half-width for both shapes (DEMPLA's "rad").
+    text += fmt::format("{:25.17e}", p.diameter[k] / 2);
+    if (!spheres) text += fmt::format("{:25.17e}", aspect);
+    text += fmt::format("{:25.17e}{:25.17e}{:25.17e}", x.x(), x.y(), x.z());
+    if (!spheres) {
+      const auto [polar, azimuth] = dempla_axis_angles(p.orientation[k]);
+      text += fmt::format("{:25.17e}{:25.17e}", polar, azimuth);
+    }
+    text += "\n";
   }
   h5::write_text_atomically(path, text);
 }

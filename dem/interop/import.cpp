@@ -13,13 +13,14 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <numeric>
 
 namespace aniso::dem::interop {
 namespace {
 
 // One density for the assembly (aniso's time step and inertial number use it).
-double assembly_density(const SphereAssembly& assembly, const DemConfig& config,
+double assembly_density(const ImportedAssembly& assembly, const DemConfig& config,
                         const config::Reader& reader) {
   if (assembly.density.empty()) return config.particles.density;
   const auto [low, high] = std::minmax_element(assembly.density.begin(), assembly.density.end());
@@ -36,7 +37,7 @@ double assembly_density(const SphereAssembly& assembly, const DemConfig& config,
 }
 
 // Sets the config's particle keys to what the file holds, for the settings and the provenance.
-void adopt_particles(DemConfig& config, config::Reader& reader, const SphereAssembly& assembly, double d50,
+void adopt_particles(DemConfig& config, config::Reader& reader, const ImportedAssembly& assembly, double d50,
                      double density) {
   auto& pc = config.particles;
   const auto [smallest, largest] = std::minmax_element(assembly.diameter.begin(), assembly.diameter.end());
@@ -46,18 +47,30 @@ void adopt_particles(DemConfig& config, config::Reader& reader, const SphereAsse
   pc.diameter_max = *largest;
   pc.d50 = d50;
   pc.density = density;
-  pc.aspect_ratio = 1.0;
+  pc.aspect_ratio = assembly.aspect_ratio;
+  if (assembly.aspect_ratio != 1.0) {
+    const double limit = 2.0 * std::atan(assembly.aspect_ratio);
+    require_input(
+        assembly.splice_angle > 0 && assembly.splice_angle < limit,
+        fmt::format("import of '{}': splice angle {:.6g} degrees, expected between 0 and 2 atan(aspect "
+                    "ratio) = {:.6g} degrees for aspect ratio {}",
+                    assembly.source, assembly.splice_angle * 180 / std::numbers::pi,
+                    limit * 180 / std::numbers::pi, assembly.aspect_ratio));
+    pc.splice_angle = assembly.splice_angle;
+    reader.replace("dem.particles.splice_angle_degrees",
+                   fmt::format("{:.17g}", assembly.splice_angle * 180 / std::numbers::pi), note);
+  }
   reader.replace("dem.particles.count", std::to_string(pc.count), note);
   reader.replace("dem.particles.diameter_min", fmt::format("{}", pc.diameter_min), note);
   reader.replace("dem.particles.diameter_max", fmt::format("{}", pc.diameter_max), note);
   reader.replace("dem.particles.d50", fmt::format("{}", d50), note);
   reader.replace("dem.particles.density", fmt::format("{}", density), note);
-  reader.replace("dem.particles.aspect_ratio", "1.0", note);
+  reader.replace("dem.particles.aspect_ratio", fmt::format("{:.17g}", assembly.aspect_ratio), note);
 }
 
 // Particles numbered in spatial order of the source rows taken in source-id order, so that the
 // numbering depends on the assembly, not on the order of the file's rows.
-data::Particles numbered_particles(const SphereAssembly& assembly, double density, double splice_angle,
+data::Particles numbered_particles(const ImportedAssembly& assembly, double density, double splice_angle,
                                    double d50, std::vector<std::uint64_t>& source_id) {
   std::vector<std::size_t> by_id(assembly.size());
   std::iota(by_id.begin(), by_id.end(), std::size_t{0});
@@ -72,7 +85,12 @@ data::Particles numbered_particles(const SphereAssembly& assembly, double densit
   source_id.resize(order.size());
   for (std::size_t id = 0; id < order.size(); ++id) {
     const std::size_t row = by_id[order[id]];
-    particles.add(id, 0.5 * assembly.diameter[row], 1.0, splice_angle, density, positions[order[id]]);
+    // An ovoid's body z turned onto its axis (the turn about the axis does not matter: the shape is
+    // a solid of revolution).
+    const Quat orientation =
+        assembly.axis.empty() ? Quat::Identity() : Quat::FromTwoVectors(Vec3::UnitZ(), assembly.axis[row]);
+    particles.add(id, 0.5 * assembly.diameter[row], assembly.aspect_ratio, splice_angle, density,
+                  positions[order[id]], orientation.normalized());
     particles.velocity[id] = assembly.velocity[row];
     particles.angular_velocity[id] = assembly.angular_velocity[row];
     source_id[id] = assembly.id[row];
@@ -143,8 +161,8 @@ void adopt_dumped_forces(h5::Checkpoint& checkpoint, const std::vector<DumpedCon
 
 } // namespace
 
-h5::Checkpoint import_spheres(const SphereAssembly& assembly, const std::vector<DumpedContact>* dumped,
-                              DemConfig& config, config::Reader& reader, ImportSummary& summary) {
+h5::Checkpoint import_assembly(const ImportedAssembly& assembly, const std::vector<DumpedContact>* dumped,
+                               DemConfig& config, config::Reader& reader, ImportSummary& summary) {
   require_input(assembly.size() > 0, fmt::format("import of '{}': no particles", assembly.source));
   const double density = assembly_density(assembly, config, reader);
   const double d50 = median_by_volume(assembly.diameter);

@@ -35,8 +35,8 @@ struct ImportSummary {
 /// The config's particle keys are set from the file (count, sizes, d50, density: InputError if
 /// the config gives another density, or the file's densities differ); its material, time step
 /// and skin are used as configured.
-h5::Checkpoint import_spheres(const SphereAssembly& assembly, const std::vector<DumpedContact>* dumped,
-                              DemConfig& config, config::Reader& reader, ImportSummary& summary);
+h5::Checkpoint import_assembly(const ImportedAssembly& assembly, const std::vector<DumpedContact>* dumped,
+                               DemConfig& config, config::Reader& reader, ImportSummary& summary);
 
 /// The rows this rank passes to h5::write_checkpoint for a checkpoint every rank holds whole:
 /// all of them on rank 0, none elsewhere.

@@ -27,14 +27,15 @@ int run_import(const ImportOptions& options, DemConfig& config, config::Reader& 
   require_input(
       !std::filesystem::exists(options.output),
       fmt::format("import: --output '{}' exists: give a new file (nothing is overwritten)", options.output));
-  require_input(options.format == "lammps" || options.format == "yade" || options.format == "dempla",
-                fmt::format("import: --format '{}': expected lammps (LAMMPS/LIGGGHTS data file), yade "
-                            "(YADE's text export of spheres) or dempla (DEMPLA/OVAL D-file of spheres)",
-                            options.format));
+  require_input(
+      options.format == "lammps" || options.format == "yade" || options.format == "dempla",
+      fmt::format("import: --format '{}': expected lammps (LAMMPS/LIGGGHTS data file), yade "
+                  "(YADE's text export of spheres) or dempla (DEMPLA/OVAL D-file of spheres or ovoids)",
+                  options.format));
   require_input(options.format == "yade" || options.cell.empty(),
                 "import: --cell is for --format yade (a LAMMPS data file carries its box)");
   require_input(options.d50 >= 0, fmt::format("import: --d50 {:g}, expected > 0 [m]", options.d50));
-  SphereAssembly assembly;
+  ImportedAssembly assembly;
   if (options.format == "lammps")
     assembly = read_lammps_data(options.input);
   else if (options.format == "dempla")
@@ -54,16 +55,20 @@ int run_import(const ImportOptions& options, DemConfig& config, config::Reader& 
     dumped = read_contact_dump(options.contacts, parse_contact_columns(options.contact_columns));
   ImportSummary summary;
   const h5::Checkpoint checkpoint =
-      import_spheres(assembly, options.contacts.empty() ? nullptr : &dumped, config, reader, summary);
+      import_assembly(assembly, options.contacts.empty() ? nullptr : &dumped, config, reader, summary);
   create_parent_folder(options.output);
   const auto provenance =
       h5::make_provenance("aniso-dem import", reader.effective_toml(), command_line, comm);
   h5::write_checkpoint(options.output, rows_for_rank(checkpoint, comm), provenance, comm);
   const Vec3& lengths = checkpoint.cell.lengths;
-  logger->info("import of '{}' ({}): {} spheres in a {:.6g} x {:.6g} x {:.6g} m cell, D50 {:.6g} m, density "
+  logger->info("import of '{}' ({}): {} {} in a {:.6g} x {:.6g} x {:.6g} m cell, D50 {:.6g} m, density "
                "{:g} kg/m^3, time step {:.4g} s; {} contacts by aniso's contact law",
-               options.input, options.format, checkpoint.particles.size(), lengths.x(), lengths.y(),
-               lengths.z(), summary.d50, summary.density, checkpoint.time_step, summary.contacts);
+               options.input, options.format, checkpoint.particles.size(),
+               assembly.aspect_ratio == 1.0
+                   ? std::string("spheres")
+                   : fmt::format("ovoids of aspect ratio {:g}", assembly.aspect_ratio),
+               lengths.x(), lengths.y(), lengths.z(), summary.d50, summary.density, checkpoint.time_step,
+               summary.contacts);
   if (!options.contacts.empty()) {
     logger->info(
         "contact dump '{}': {} tangential forces adopted ({} capped at the Coulomb limit); {} dumped "
@@ -106,7 +111,7 @@ int run_export(const ExportOptions& given, const Logger& logger, const mpi::Comm
   require_input(options.format == "lammps" || options.format == "xdmf" || options.format == "dempla",
                 fmt::format("export: --format '{}': expected lammps (data file, and with --contacts a "
                             "`dump local` of the contact forces), xdmf (particles and force chains for "
-                            "ParaView) or dempla (a DEMPLA/OVAL D-file of spheres, its start file)",
+                            "ParaView) or dempla (a DEMPLA/OVAL D-file of spheres or ovoids, its start file)",
                             options.format));
   require_input(options.format == "lammps" || options.contacts.empty(),
                 "export: --contacts is for --format lammps (the XDMF output holds the contacts)");
@@ -122,7 +127,7 @@ int run_export(const ExportOptions& given, const Logger& logger, const mpi::Comm
   }
   if (options.format == "dempla") {
     write_dempla_dfile(options.output, checkpoint);
-    logger->info("export of '{}': {} spheres in DEMPLA D-file {} (lengths in metres)", options.input,
+    logger->info("export of '{}': {} particles in DEMPLA D-file {} (lengths in metres)", options.input,
                  checkpoint.particles.size(), options.output);
     return 0;
   }

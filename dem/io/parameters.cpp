@@ -202,15 +202,17 @@ const std::vector<Parameter>& parameters() {
        .help = "inter-particle friction during compaction cycles"},
       {.key = "dem.material.hertz_radius",
        .config = choice<&D::material, &MaterialConfig::hertz_radius>(),
-       .help = "ovoid Hertz radius: 'halfwidth' R* = a_i a_j / (a_i + a_j) as in Kuhn's code, or 'curvature' "
-               "(elliptic Hertz from the surface curvatures)",
+       .help =
+           "ovoid Hertz radius: 'halfwidth' R* = a_i a_j / (a_i + a_j) as in Kuhn's code, 'curvature' "
+           "(elliptic Hertz from the surface curvatures) or 'mean_semi_axis' (each a_i (2 + alpha) / 3, as "
+           "DEMPLA 0.2.5 does)",
        .attribute = "hertz_radius_curvature",
        .get = &get_setting<&S::hertz_radius>,
        .set = &set_setting<&S::hertz_radius>,
        .binding = Binding::fixed,
        .stored_unit = units::none,
-       .stored_range = Range::closed(0.0, 1.0),
-       .words = {"halfwidth", "curvature"}},
+       .stored_range = Range::closed(0.0, 2.0),
+       .words = {"halfwidth", "curvature", "mean_semi_axis"}},
       {.key = "dem.integration.time_step_fraction",
        .config = &member<&D::integration, &IntegrationConfig::time_step_fraction>,
        .unit = units::none,

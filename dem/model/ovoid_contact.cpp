@@ -253,6 +253,11 @@ double elliptic_hertz_radius(double radius_small, double radius_large) {
   return value / curvature_a;
 }
 
+double mean_semi_axis(const ConvexBody& body) {
+  // The axial half-height alpha a is where the cap reaches the axis: z_c + R_c.
+  return (2 * body.bounding_radius + body.cap_centre_height + body.cap_radius) / 3;
+}
+
 OvoidPairGeometry ovoid_pair_geometry(const ConvexBody& a, const ConvexBody& b, const Vec3& d,
                                       const Vec3& guess, const PairProperties& properties,
                                       HertzRadius hertz_radius, bool stop_if_separated, Vec3* separating) {
@@ -272,10 +277,14 @@ OvoidPairGeometry ovoid_pair_geometry(const ConvexBody& a, const ConvexBody& b, 
   result.contact = convex_contact(a, b, d, guess, stop_if_separated, hertz_radius == HertzRadius::curvature);
   if (separating != nullptr)
     *separating = result.contact.overlap > 0 ? Vec3::Zero() : Vec3(result.contact.normal);
-  result.hertz_radius =
-      hertz_radius == HertzRadius::curvature && result.contact.overlap > 0
-          ? elliptic_hertz_radius(result.contact.principal_radii[0], result.contact.principal_radii[1])
-          : properties.effective_radius;
+  result.hertz_radius = properties.effective_radius;
+  if (result.contact.overlap > 0 && hertz_radius == HertzRadius::curvature)
+    result.hertz_radius =
+        elliptic_hertz_radius(result.contact.principal_radii[0], result.contact.principal_radii[1]);
+  if (result.contact.overlap > 0 && hertz_radius == HertzRadius::mean_semi_axis) {
+    const double radius_a = mean_semi_axis(a), radius_b = mean_semi_axis(b);
+    result.hertz_radius = radius_a * radius_b / (radius_a + radius_b);
+  }
   return result;
 }
 

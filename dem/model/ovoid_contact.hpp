@@ -72,9 +72,13 @@ double elliptic_hertz_radius(double radius_small, double radius_large);
 
 /// How the Hertz radius of an ovoid contact is chosen (/work/shared/reference/ovoid.md).
 enum class HertzRadius : std::uint8_t {
-  halfwidth = 0, ///< R* from the particles' half-widths a_i, as Kuhn's OVAL code does (the paper's)
-  curvature = 1, ///< elliptic Hertz from both surfaces' principal curvatures at the contact
+  halfwidth = 0,      ///< R* from the particles' half-widths a_i, as Kuhn's OVAL code does (the paper's)
+  curvature = 1,      ///< elliptic Hertz from both surfaces' principal curvatures at the contact
+  mean_semi_axis = 2, ///< R* from each particle's mean semi-axis a (2 + alpha) / 3, as DEMPLA 0.2.5 does
 };
+
+/// The mean of a body's three semi-axes, (a + a + alpha a) / 3: DEMPLA 0.2.5's Hertz radius of an ovoid.
+double mean_semi_axis(const ConvexBody& body);
 
 /// Geometry of the pair of world-frame bodies a and b with centre separation d (minimum image,
 /// from a to b), for an ovoid on either side; `guess` is the normal to start from. The Hertz radius follows

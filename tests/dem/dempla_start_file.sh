@@ -3,6 +3,10 @@
 # - export -> import gives every sphere back at its position and size (exact) and the bare
 #   LAMMPS import's contacts and p (the D-file has no contact forces);
 # - --d50 rescales a unitless file (DEMPLA's samples: D50 = 1) to the same assembly in metres;
+# - ovoids (shape 5): an ovoid D-file comes in with its axes and aspect ratio (rows wrapped over
+#   two lines as DEMPLA's samples have them read the same) and goes out and in again unchanged;
+#   dem.material.hertz_radius = mean_semi_axis (DEMPLA 0.2.5's a (2 + alpha) / 3) scales p of the
+#   same overlaps by exactly sqrt((2 + alpha) / 3) against halfwidth;
 # - `consolidate` brings an imported assembly that lost its tangential forces to p0 and a
 #   verified static state (a fixed-cell hold keeps p within 1e-3), the same bits on 1 and 2 ranks,
 #   and `load` starts from it;
@@ -18,7 +22,7 @@ enter_fresh_folder "$work"
 dem=$build/dem/aniso-dem
 small_prepared_assembly "$build" dem
 
-expect_exit 0 export_dfile "200 spheres in DEMPLA D-file" "$dem" export --input dem/prepared.h5 --format dempla \
+expect_exit 0 export_dfile "200 particles in DEMPLA D-file" "$dem" export --input dem/prepared.h5 --format dempla \
   --output Dsmall
 expect_exit 0 import_dfile "import of 'Dsmall' (dempla): 200 spheres" "$dem" import --input Dsmall \
   --format dempla --output from_dfile.h5
@@ -86,6 +90,83 @@ for name, ok in checks.items():
 raise SystemExit(0 if all(checks.values()) else 1)
 PY
 
+# Ovoids: the 200 spheres as ovoids of aspect ratio 0.8 with random axes, in a cell 1% smaller so
+# that they touch; the D-file's rows wrapped after 4 values as in DEMPLA's StartFiles/DOblate_1800.
+/usr/bin/python3 - Dsmall Dovoids Dovoids_wrapped <<'PY'
+import sys
+import numpy as np
+lines = open(sys.argv[1]).read().splitlines()
+rows = np.array([[float(w) for w in line.split()] for line in lines[3:]])
+rng = np.random.default_rng(5)
+axis = rng.normal(size=(len(rows), 3))
+axis /= np.linalg.norm(axis, axis=1)[:, None]
+g1, g2 = np.degrees(np.arccos(axis[:, 2])), np.degrees(np.arctan2(axis[:, 1], axis[:, 0]))
+shrink = 0.99
+lengths = [float(w) * shrink for w in lines[1].split()[1:]]
+head = f"5\n{len(rows):6d}" + "".join(f"{v:25.17e}" for v in lengths) + "\n"
+head += "      " + "".join(f"{0.0:25.17e}" for _ in range(3)) + "\n" + f"{45.0:25.17e}\n"
+values = [[r[0], 0.8, *(r[1:] * shrink), a, b] for r, a, b in zip(rows, g1, g2)]
+with open(sys.argv[2], "w") as out:
+    out.write(head + "".join("".join(f"{v:25.17e}" for v in row) + "\n" for row in values))
+with open(sys.argv[3], "w") as out:
+    out.write(head + "".join("".join(f"{v:25.17e}" for v in row[:4]) + "\n" + "".join(f"{v:25.17e}" for v in row[4:])
+                             + "\n" for row in values))
+PY
+expect_exit 0 import_ovoids "200 ovoids of aspect ratio 0.8" "$dem" import --input Dovoids --format dempla \
+  --output ovoids.h5
+expect_exit 0 import_ovoids_wrapped "200 ovoids" "$dem" import --input Dovoids_wrapped --format dempla \
+  --output ovoids_wrapped.h5
+expect_exit 0 import_ovoids_dempla_hertz "200 ovoids" "$dem" import --input Dovoids --format dempla \
+  --output ovoids_mean_axis.h5 --set dem.material.hertz_radius=mean_semi_axis
+expect_exit 0 export_ovoids "200 particles in DEMPLA D-file" "$dem" export --input ovoids.h5 --format dempla \
+  --output Dovoids_again
+expect_exit 0 import_ovoids_again "200 ovoids" "$dem" import --input Dovoids_again --format dempla \
+  --output ovoids_again.h5
+for group in /particles /contacts /cell; do
+  h5diff ovoids.h5 ovoids_wrapped.h5 "$group" "$group" >diff.txt ||
+    { echo "FAIL: the wrapped rows gave another $group:"; head -5 diff.txt; status=1; }
+done
+/usr/bin/python3 - <<'PY' || status=1
+import re
+import h5py
+import numpy as np
+
+def logged_p(name):
+    return float(re.search(r"p = ([0-9.e+-]+) Pa", open(name).read()).group(1))
+
+def axes(f):
+    w, x, y, z = f["particles/orientation"][:].T  # body z turned into the world frame
+    return np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], axis=1)
+
+lines = open("Dovoids").read().splitlines()
+rows = np.array([[float(w) for w in line.split()] for line in lines[4:]])
+g1, g2 = np.radians(rows[:, 5]), np.radians(rows[:, 6])
+given = np.stack([np.sin(g1) * np.cos(g2), np.sin(g1) * np.sin(g2), np.cos(g1)], axis=1)
+with h5py.File("ovoids.h5", "r") as a, h5py.File("ovoids_again.h5", "r") as b:
+    source = a["particles/source_id"][:] - 1
+    axis_error = np.abs(np.abs((axes(a) * given[source]).sum(axis=1)) - 1).max()
+    again = b["particles/source_id"][:] - 1
+    # Dovoids_again's rows are ovoids.h5's particles in id order: ovoids_again's source ids name them.
+    moved = np.abs(b["particles/position"][:] - a["particles/position"][:][again]).max()
+    again_axes = np.abs(np.abs((axes(b) * axes(a)[again]).sum(axis=1)) - 1).max()
+    aspect = set(a["particles/aspect_ratio"][:])
+    contacts = (len(a["contacts/overlap"]), len(b["contacts/overlap"]))
+ratio = logged_p("import_ovoids_dempla_hertz.log") / logged_p("import_ovoids.log")
+checks = {
+    f"the D-file's axes to 1e-12 (largest 1 - |cos| {axis_error:.1e})": axis_error <= 1e-12,
+    f"aspect ratio 0.8 for every particle ({sorted(aspect)})": aspect == {0.8},
+    f"contacts among the ovoids ({contacts[0]})": contacts[0] >= 20,
+    f"export -> import: the positions (exact: {moved:.1e}), axes to 1e-12 ({again_axes:.1e}), contacts "
+    f"({contacts[1]})": moved == 0.0 and again_axes <= 1e-12 and contacts[0] == contacts[1],
+    # to 1e-8: the logs print p to 9 digits
+    f"mean_semi_axis against halfwidth: p ratio {ratio:.10f}, sqrt(2.8 / 3) = {np.sqrt(2.8 / 3):.10f} (1e-8)":
+    abs(ratio - np.sqrt(2.8 / 3)) <= 1e-8,
+}
+for name, ok in checks.items():
+    print(("ok: " if ok else "FAIL: ") + name)
+raise SystemExit(0 if all(checks.values()) else 1)
+PY
+
 # consolidate: the bare import has lost its tangential forces; consolidation makes it static at p0.
 p0=80e3
 expect_exit 0 consolidate "consolidate of 'from_dfile.h5'" "$dem" consolidate --input from_dfile.h5 \
@@ -109,12 +190,16 @@ refuse() { # NAME PATTERN EXIT FILE [OPTIONS...]
   expect_exit "$code" "$name" "$pattern" "$dem" import --input "$file" --format dempla --output "$name.h5" "$@"
   [ ! -e "$name.h5" ] || { echo "FAIL: $name: a checkpoint was written"; status=1; }
 }
-sed '1s/^4$/5/' Dsmall >Dovoid
-refuse ovoid "line 1: shape code 5: aniso imports DEMPLA's spheres (code 4) only" 3 Dovoid
+sed '1s/^4$/6/' Dsmall >Dclusters
+refuse clusters "line 1: shape code 6: aniso imports DEMPLA's spheres (code 4) and ovoids (5)" 3 Dclusters
+awk 'NR == 10 { $2 = "0.7" } { print }' Dovoids >Dmixed
+refuse mixed "line 10: aspect ratio 0.69999999999999996 where the first particle has 0.80000000000000004: aniso holds one aspect ratio per assembly" 3 Dmixed
+awk 'NR == 4 { $1 = "78.0" } { print }' Dovoids >Dsplice
+refuse splice "splice angle 78 degrees, expected between 0 and 2 atan(aspect ratio) = 77.3196 degrees" 2 Dsplice
 awk 'NR == 3 { $2 = "1.0E-05" } { print }' Dsmall >Dsheared
 refuse sheared "line 3: cell offset 1.0E-05: aniso's periodic cell is rectangular" 3 Dsheared
 head -n 100 Dsmall >Dshort
-refuse short "97 spheres, the header says 200" 3 Dshort
+refuse short "97 particles, the header says 200" 3 Dshort
 awk 'NR == 10 { $1 = "-0.1" } { print }' Dsmall >Dnegative
 refuse negative "line 10: radius -0.1, expected > 0" 3 Dnegative
 refuse both "give one or the other" 2 Dsmall --d50 1e-4 --contacts a.data

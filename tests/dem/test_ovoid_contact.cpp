@@ -243,6 +243,31 @@ TEST(OvoidContact, RelativePrincipalRadiiAtTheEquator) {
   EXPECT_NEAR(s.principal_radii[1], 2.0 / 3.0, 1e-12);
 }
 
+// DEMPLA 0.2.5's Hertz radius of an ovoid is the mean of its semi-axes, a (2 + alpha) / 3, whatever
+// the splice angle and the orientation; a pair's is R_i R_j / (R_i + R_j) of those.
+TEST(OvoidContact, MeanSemiAxisHertzRadius) {
+  ShapeTable table(beta);
+  for (double alpha : {1.0, 0.8, 0.5})
+    table.add(alpha);
+  const Quat turned(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+  for (double alpha : {1.0, 0.8, 0.5})
+    EXPECT_NEAR(aniso::dem::model::mean_semi_axis(table.body(1.5, alpha, turned)), 1.5 * (2 + alpha) / 3,
+                1e-12);
+  aniso::dem::model::PairProperties properties;
+  properties.effective_radius = 1.5 * 1.0 / 2.5; // the half-widths' R*
+  const ConvexBody a = table.body(1.5, 0.5, Quat::Identity()), b = table.body(1.0, 0.8, Quat::Identity());
+  const Vec3 d(1.5 + 1.0 - overlap, 0, 0); // band against band
+  const double ra = 1.5 * 2.5 / 3, rb = 2.8 / 3;
+  EXPECT_NEAR(aniso::dem::model::ovoid_pair_geometry(a, b, d, Vec3::UnitX(), properties,
+                                                     aniso::dem::model::HertzRadius::mean_semi_axis, false)
+                  .hertz_radius,
+              ra * rb / (ra + rb), 1e-12);
+  EXPECT_EQ(aniso::dem::model::ovoid_pair_geometry(a, b, d, Vec3::UnitX(), properties,
+                                                   aniso::dem::model::HertzRadius::halfwidth, false)
+                .hertz_radius,
+            properties.effective_radius);
+}
+
 // The Hessian of the support function (the radius-of-curvature tensor) that Newton's step and
 // the Hertz radius use is the derivative of the support point: a central difference of the
 // point along a tangent direction, away from the splice circles where it jumps.

@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # aniso beside DEMPLA, Kuhn's successor of OVAL (the code that made the paper's material), on the
-# same assembly: DEMPLA's sample StartFiles/Dsphere_1800 (1800 spheres made frictionless), scaled
-# to D50 = 0.17 mm by `aniso-dem import --d50` and written back by `aniso-dem export --format
-# dempla`, so that both codes start from the same positions. Each code consolidates it to
-# p0 = 100 kPa with mu = 0.5 and loads it in biaxial plane strain at constant p (x1 shortened,
-# x2 fixed, x3 servoed) to FINAL_STRAIN, with the paper's material (G = 29 GPa, nu = 0.15).
+# same assembly. The start is DEMPLA's sample StartFiles/Dsphere_1800 (1800 spheres made
+# frictionless), scaled to D50 = 0.17 mm by `aniso-dem import --d50`, or with START=FILE.h5 an aniso
+# checkpoint (spheres or ovoids, e.g. a prepared paper-config assembly); `aniso-dem export --format
+# dempla` writes it for DEMPLA, so that both codes start from the same positions (and axes). Each
+# code consolidates it to p0 = 100 kPa with mu = 0.5 and loads it in biaxial plane strain at
+# constant p (x1 shortened, x2 fixed, x3 servoed) to FINAL_STRAIN, with the paper's material
+# (G = 29 GPa, nu = 0.15). aniso's ovoids take DEMPLA's Hertz radius (dem.material.hertz_radius =
+# mean_semi_axis, a (2 + alpha) / 3) unless HERTZ_RADIUS names another; for spheres every choice is
+# the sphere's radius.
 #
 # Runs (each skipped when its CSV exists, so an interrupted comparison continues):
 #   dempla_default   DEMPLA as its samples run: algori 1, strain 1e-6 per step (I = 8.1e-4 in
@@ -15,7 +19,8 @@
 #                    DEMPLA gives every grain the mean mass and a moment of 2.0 m r^2 (iexact 0),
 #                    five times a solid sphere's, so its rotational damping torque is about six
 #                    times aniso_body's at the same spin
-#   aniso_default    aniso's own loading at the same inertial number 8.1e-4
+#   aniso_default    aniso's own loading at DEMPLA's inertial number (8.1e-4 on Dsphere_1800: 1e-6 a step
+#                    with DEMPLA's scaled mass, which the script reads from DEMPLA's output)
 #   aniso_oval       aniso with the paper configs' increments (1e-4, relaxed to 1e-2)
 #   aniso_qs         aniso's quasi-static mode (increments of 3e-5, each minimised to 1e-3)
 #   dempla_slow      dempla_default at a tenth of the rate (1e-7 a step, I = 8.1e-5)
@@ -25,6 +30,9 @@
 #                    contact damping
 #   aniso_body_spin  aniso_body with the spin damped 6 times as fast (global_damping_spin_factor 6): the
 #                    damping torque of DEMPLA's samples (moment 5x a sphere's, spin rate 1.18x)
+#   aniso_halfwidth  aniso_default with the paper configs' Hertz radius of ovoids (halfwidth: a_i a_j /
+#                    (a_i + a_j), 0.97-0.91 of DEMPLA's contact stiffness for alpha 0.8-0.5), from its own
+#                    consolidation of the same start
 # Every run writes WORK_DIR/results/<run>.csv (strain, q13, q23, p, eps_v, void_ratio,
 # coordination); workflows/plots/chart_dem_dempla.py charts them.
 #
@@ -61,10 +69,18 @@ if [ ! -x dempla ]; then
   mv dempla.new dempla
 fi
 
-# The same start for both codes: Dsphere_1800 at D50 = 0.17 mm (its volume median is 1.27, not 1).
+# The same start for both codes: Dsphere_1800 at D50 = 0.17 mm (its volume median is 1.27, not 1),
+# or the given checkpoint through a D-file (what DEMPLA reads is what aniso imports).
+hertz=${HERTZ_RADIUS:-mean_semi_axis}
 if [ ! -f start.h5 ]; then
-  "$dem" import --format dempla --input "$repo/StartFiles/Dsphere_1800" --d50 0.17e-3 --output start.h5 \
-    >import.log 2>&1
+  if [ -n "${START:-}" ]; then
+    "$dem" export --input "$START" --format dempla --output DGiven --log-level warn
+    "$dem" import --format dempla --input DGiven --output start.h5 --set dem.material.hertz_radius="$hertz" \
+      >import.log 2>&1
+  else
+    "$dem" import --format dempla --input "$repo/StartFiles/Dsphere_1800" --d50 0.17e-3 --output start.h5 \
+      --set dem.material.hertz_radius="$hertz" >import.log 2>&1
+  fi
   "$dem" export --input start.h5 --format dempla --output DStart --log-level warn
 fi
 [ -f aniso_prepared.h5 ] || "$dem" consolidate --input start.h5 --output aniso_prepared.h5 >consolidate.log 2>&1
@@ -99,6 +115,14 @@ PY
     dempla_failed cons.out && { echo "FAIL: DEMPLA consolidation:"; tail cons.out; exit 1; }
     [ -s CRcons ] || { echo "FAIL: DEMPLA wrote no restart file CRcons"; exit 1; }
   )
+  # One step from the consolidated state: the reference mass DEMPLA's loadings start with.
+  (
+    cd dempla_consolidation
+    [ -s mass.out ] && grep -q "reference particle mass" mass.out && exit 0
+    $io runfile Rmass istart=3 "seg=111000,0,0,0,0,0,0,0,0,70,1,1,0,0"
+    ../dempla <<<$'1\nRmass\nCRcons' >mass.out 2>&1
+    grep -q "reference particle mass" mass.out || { echo "FAIL: DEMPLA printed no reference mass:"; tail mass.out; exit 1; }
+  )
 }
 
 # DEMPLA's loading: F11 at -1e-6 a step, F22 fixed, F33 servoed for constant p (icontr 002000),
@@ -121,14 +145,34 @@ dempla_load() { # RUN STRAIN_PER_STEP [KEY=VALUE...]: RunFile settings (pcrit1=0
   )
 }
 
+# DEMPLA's inertial number at STRAIN_PER_STEP: its automatic mass scaling gives every grain the
+# reference mass it prints (time unit one step; it grows with the contact stiffness, so it is read
+# at the consolidated state), i.e. a density of that mass over the mean grain volume;
+# I = rate d50 sqrt(rho / p0) with aniso's D50 and grain volumes of the same start.
+dempla_inertial_number() { # STRAIN_PER_STEP
+  /usr/bin/python3 - "$1" "$(grep -m1 "reference particle mass" dempla_consolidation/mass.out | awk '{print $NF}')" \
+    <<'PY'
+import sys
+import h5py
+import numpy as np
+rate, mass = float(sys.argv[1]), float(sys.argv[2])
+with h5py.File("start.h5", "r") as f:
+    d = np.sort(f["particles/diameter"][:])
+    volume = (f["particles/mass"][:] / f["parameters"].attrs["density"]).mean()
+cumulative = np.cumsum(d**3)
+d50 = d[np.searchsorted(cumulative, 0.5 * cumulative[-1])]
+print(f"{rate * d50 * np.sqrt(mass / volume / 1e5):.2g}")
+PY
+}
+
 # aniso's loading from its own consolidation of the same start, as a CSV of the same columns.
-aniso_load() { # RUN SETTINGS...
+aniso_load() { # RUN SETTINGS... (PREPARED=file overrides aniso_prepared.h5)
   local run=$1
   shift
   local settings=()
   for s in "$@"; do settings+=(--set "$s"); done
   local start=$SECONDS
-  "$dem" load --input aniso_prepared.h5 --set dem.output_dir="$run" --set dem.load.final_strain="$final" \
+  "$dem" load --input "${PREPARED:-aniso_prepared.h5}" --set dem.output_dir="$run" --set dem.load.final_strain="$final" \
     --set dem.load.checkpoint_strains="[$final]" --set dem.equilibrium.at_checkpoints=false \
     --set dem.load.history_interval=5e-4 "${settings[@]}" --overwrite >"$run.log" 2>&1
   echo $((SECONDS - start)) >"$run/wall.txt"
@@ -138,6 +182,8 @@ aniso_load() { # RUN SETTINGS...
 # The same start and the same consolidation: the codes' Hertz laws and geometry agree.
 dempla_consolidate
 $io agreement .
+fast=$(dempla_inertial_number 1e-6) slow=$(dempla_inertial_number 1e-7)
+echo "DEMPLA's inertial number: $fast at 1e-6 a step, $slow at 1e-7"
 
 for run in $runs; do
   [ -s "results/$run.csv" ] && { echo "$run: done before (results/$run.csv)"; continue; }
@@ -147,13 +193,21 @@ for run in $runs; do
     dempla_no_body) dempla_load "$run" 1e-6 pcrit1=0. pcrit2=0. pcrit3=0.05 ;;
     dempla_no_spin_damping) dempla_load "$run" 1e-6 pcrit2=0. ;;
     dempla_slow) dempla_load "$run" 1e-7 ;;
-    aniso_default) aniso_load "$run" dem.load.inertial_number=8.1e-4 ;;
-    aniso_slow) aniso_load "$run" dem.load.inertial_number=8.1e-5 ;;
+    aniso_default) aniso_load "$run" dem.load.inertial_number="$fast" ;;
+    aniso_halfwidth)
+      if [ ! -f aniso_prepared_halfwidth.h5 ]; then
+        "$dem" import --format dempla --input DStart --output start_halfwidth.h5 \
+          --set dem.material.hertz_radius=halfwidth >import_halfwidth.log 2>&1
+        "$dem" consolidate --input start_halfwidth.h5 --output aniso_prepared_halfwidth.h5 \
+          >consolidate_halfwidth.log 2>&1
+      fi
+      PREPARED=aniso_prepared_halfwidth.h5 aniso_load "$run" dem.load.inertial_number="$fast" ;;
+    aniso_slow) aniso_load "$run" dem.load.inertial_number="$slow" ;;
     aniso_qs) aniso_load "$run" dem.load.quasi_static=true dem.load.increment=3e-5 dem.load.increment_tolerance=1e-3 ;;
     aniso_oval) aniso_load "$run" dem.load.increment=1e-4 dem.load.increment_tolerance=1e-2 ;;
-    aniso_body) aniso_load "$run" dem.load.inertial_number=8.1e-4 dem.integration.global_damping=0.071 \
+    aniso_body) aniso_load "$run" dem.load.inertial_number="$fast" dem.integration.global_damping=0.071 \
       dem.integration.damping=0 ;;
-    aniso_body_spin) aniso_load "$run" dem.load.inertial_number=8.1e-4 dem.integration.global_damping=0.071 \
+    aniso_body_spin) aniso_load "$run" dem.load.inertial_number="$fast" dem.integration.global_damping=0.071 \
       dem.integration.global_damping_spin_factor=6 dem.integration.damping=0 ;;
     *) echo "unknown run '$run'"; exit 2 ;;
   esac
