@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""aniso beside DEMPLA (Kuhn's OVAL successor) on DEMPLA's Dsphere_1800: (sigma11 - sigma33)/p,
+"""aniso beside DEMPLA (Kuhn's OVAL successor) on one assembly (DEMPLA's Dsphere_1800, or aniso's
+1000 alpha = 0.625 ovoids): (sigma11 - sigma33)/p,
 (sigma22 - sigma33)/p, eps_v and Z against strain for each run of tests/dem/peer/dempla_biaxial.sh
 (docs/validation.md, "DEM against DEMPLA").
 
@@ -25,14 +26,20 @@ import matplotlib.pyplot as plt  # noqa: E402
 LABELS = {
     "dempla_default": ("DEMPLA as its samples run (body damping 3%/5%)", "C3", "-"),
     "dempla_no_body": ("DEMPLA set as aniso (contact damping, no body damping)", "C1", "--"),
-    "aniso_default": ("aniso, I = 8.1e-4", "C0", "-"),
+    "aniso_default": ("aniso, DEMPLA's inertial number", "C0", "-"),
+    "aniso_halfwidth": ("aniso, DEMPLA's I, the paper configs' Hertz radius (halfwidth)", "C7", "-."),
     "aniso_body": ("aniso set as DEMPLA (body damping, no contact damping)", "C2", "--"),
     "aniso_body_spin": ("aniso set fully as DEMPLA (body damping, spin x6)", "C6", "--"),
     "aniso_oval": ("aniso, OVAL's increments (paper configs)", "C4", ":"),
     "aniso_qs": ("aniso, quasi-static (3e-5, minimised to 1e-3)", "k", "-"),
     "dempla_no_spin_damping": ("DEMPLA without its body damping of rotation", "C8", "-."),
     "dempla_slow": ("DEMPLA as its samples run, a tenth of the rate", "C5", "-"),
-    "aniso_slow": ("aniso, I = 8.1e-5", "C9", "-"),
+    "aniso_slow": ("aniso, a tenth of DEMPLA's inertial number", "C9", "-"),
+}
+TITLES = {
+    "dem_dempla_spheres": "DEMPLA's Dsphere_1800 (D50 0.17 mm, e = 0.537 at 100 kPa)",
+    "dem_dempla_spheres_rate": "DEMPLA's Dsphere_1800 (D50 0.17 mm, e = 0.537 at 100 kPa)",
+    "dem_dempla_ovoids": "aniso's 1000 ovoids, alpha = 0.625 (paper-ovoids-0.625.toml; e = 0.555 at 100 kPa)",
 }
 QUANTITIES = ["q13", "q23", "eps_v", "coordination"]
 GRID_STEP = 0.0025
@@ -111,7 +118,7 @@ def summary(grid, path):
         print(row)
 
 
-def chart(grid, path):
+def chart(grid, path, title):
     strain = 100 * grid["strain"]
     fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharex=True)
     titles = {"q13": "(sigma11 - sigma33)/p", "q23": "(sigma22 - sigma33)/p",
@@ -126,7 +133,7 @@ def chart(grid, path):
     for ax in axes[1]:
         ax.set_xlabel("compressive strain -eps11 [%]")
     axes[0, 0].legend(fontsize=8)
-    fig.suptitle("DEMPLA's Dsphere_1800 (D50 0.17 mm, e = 0.537 at 100 kPa): biaxial plane strain at constant p")
+    fig.suptitle(f"{title}: biaxial plane strain at constant p")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -142,7 +149,7 @@ def main(argv):
         grid = on_grid(read_runs(argv[1]))
         write_curves(grid, f"{output}/{name}_curves.csv")
     summary(grid, f"{output}/{name}.csv")
-    chart(grid, f"{output}/{name}.png")
+    chart(grid, f"{output}/{name}.png", TITLES.get(name, name))
 
 
 if __name__ == "__main__":

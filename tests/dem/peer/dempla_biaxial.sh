@@ -23,6 +23,8 @@
 #                    with DEMPLA's scaled mass, which the script reads from DEMPLA's output)
 #   aniso_oval       aniso with the paper configs' increments (1e-4, relaxed to 1e-2)
 #   aniso_qs         aniso's quasi-static mode (increments of 3e-5, each minimised to 1e-3)
+#   dempla_exact     dempla_default with each grain's own mass and moments of inertia (iexact 1; ovoids
+#                    then turn by Euler's equations), still density-scaled
 #   dempla_slow      dempla_default at a tenth of the rate (1e-7 a step, I = 8.1e-5)
 #   aniso_slow       aniso_default at I = 8.1e-5
 #   aniso_body       aniso set as DEMPLA is: global damping of the fluctuating motion (0.071 of
@@ -192,6 +194,7 @@ for run in $runs; do
     dempla_default) dempla_load "$run" 1e-6 ;;
     dempla_no_body) dempla_load "$run" 1e-6 pcrit1=0. pcrit2=0. pcrit3=0.05 ;;
     dempla_no_spin_damping) dempla_load "$run" 1e-6 pcrit2=0. ;;
+    dempla_exact) dempla_load "$run" 1e-6 iexact=1 ;;
     dempla_slow) dempla_load "$run" 1e-7 ;;
     aniso_default) aniso_load "$run" dem.load.inertial_number="$fast" ;;
     aniso_halfwidth)
