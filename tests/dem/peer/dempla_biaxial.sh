@@ -35,6 +35,7 @@
 #   aniso_halfwidth  aniso_default with the paper configs' Hertz radius of ovoids (halfwidth: a_i a_j /
 #                    (a_i + a_j), 0.97-0.91 of DEMPLA's contact stiffness for alpha 0.8-0.5), from its own
 #                    consolidation of the same start
+#   aniso_body_spin_slow  aniso_body_spin at a tenth of the rate (the damping rate unchanged)
 # Every run writes WORK_DIR/results/<run>.csv (strain, q13, q23, p, eps_v, void_ratio,
 # coordination); workflows/plots/chart_dem_dempla.py charts them.
 #
@@ -211,6 +212,8 @@ for run in $runs; do
     aniso_body) aniso_load "$run" dem.load.inertial_number="$fast" dem.integration.global_damping=0.071 \
       dem.integration.damping=0 ;;
     aniso_body_spin) aniso_load "$run" dem.load.inertial_number="$fast" dem.integration.global_damping=0.071 \
+      dem.integration.global_damping_spin_factor=6 dem.integration.damping=0 ;;
+    aniso_body_spin_slow) aniso_load "$run" dem.load.inertial_number="$slow" dem.integration.global_damping=0.071 \
       dem.integration.global_damping_spin_factor=6 dem.integration.damping=0 ;;
     *) echo "unknown run '$run'"; exit 2 ;;
   esac
