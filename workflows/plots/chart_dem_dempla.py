@@ -35,11 +35,13 @@ LABELS = {
     "dempla_no_spin_damping": ("DEMPLA without its body damping of rotation", "C8", "-."),
     "dempla_slow": ("DEMPLA as its samples run, a tenth of the rate", "C5", "-"),
     "aniso_slow": ("aniso, a tenth of DEMPLA's inertial number", "C9", "-"),
+    "aniso_body_spin_slow": ("aniso set fully as DEMPLA, a tenth of the rate", "C6", ":"),
 }
 TITLES = {
     "dem_dempla_spheres": "DEMPLA's Dsphere_1800 (D50 0.17 mm, e = 0.537 at 100 kPa)",
     "dem_dempla_spheres_rate": "DEMPLA's Dsphere_1800 (D50 0.17 mm, e = 0.537 at 100 kPa)",
     "dem_dempla_ovoids": "aniso's 1000 ovoids, alpha = 0.625 (paper-ovoids-0.625.toml; e = 0.555 at 100 kPa)",
+    "dem_dempla_ovoids_rate": "aniso's 1000 ovoids, alpha = 0.625: DEMPLA's and aniso's rates and damping",
 }
 QUANTITIES = ["q13", "q23", "eps_v", "coordination"]
 GRID_STEP = 0.0025
