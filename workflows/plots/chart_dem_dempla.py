@@ -42,6 +42,7 @@ TITLES = {
     "dem_dempla_spheres_rate": "DEMPLA's Dsphere_1800 (D50 0.17 mm, e = 0.537 at 100 kPa)",
     "dem_dempla_ovoids": "aniso's 1000 ovoids, alpha = 0.625 (paper-ovoids-0.625.toml; e = 0.555 at 100 kPa)",
     "dem_dempla_ovoids_rate": "aniso's 1000 ovoids, alpha = 0.625: DEMPLA's and aniso's rates and damping",
+    "dem_dempla_ovoids_seed2": "aniso's 1000 ovoids, alpha = 0.625, seed 2 (e = 0.556 at 100 kPa): aniso's loadings",
 }
 QUANTITIES = ["q13", "q23", "eps_v", "coordination"]
 GRID_STEP = 0.0025
