@@ -1,6 +1,6 @@
 #pragma once
-// `aniso-dem import`: a sphere assembly from another code's files as a valid aniso checkpoint,
-// ready for `hold`, `relax`, `load` and every later stage.
+// `aniso-dem import`: an assembly (spheres, or DEMPLA's ovoids) from another code's files as a valid aniso
+// checkpoint, ready for `hold`, `relax`, `load` and every later stage.
 
 #include "common/config.hpp"
 #include "common/h5/checkpoint.hpp"

@@ -122,6 +122,8 @@ expect_exit 0 export_ovoids "200 particles in DEMPLA D-file" "$dem" export --inp
   --output Dovoids_again
 expect_exit 0 import_ovoids_again "200 ovoids" "$dem" import --input Dovoids_again --format dempla \
   --output ovoids_again.h5
+# Read back, the mean_semi_axis checkpoint restores its contacts' forces with that radius.
+expect_exit 0 hold_ovoids_dempla_hertz "hold of" "$dem" hold --input ovoids_mean_axis.h5 --steps 1
 for group in /particles /contacts /cell; do
   h5diff ovoids.h5 ovoids_wrapped.h5 "$group" "$group" >diff.txt ||
     { echo "FAIL: the wrapped rows gave another $group:"; head -5 diff.txt; status=1; }
@@ -152,6 +154,7 @@ with h5py.File("ovoids.h5", "r") as a, h5py.File("ovoids_again.h5", "r") as b:
     aspect = set(a["particles/aspect_ratio"][:])
     contacts = (len(a["contacts/overlap"]), len(b["contacts/overlap"]))
 ratio = logged_p("import_ovoids_dempla_hertz.log") / logged_p("import_ovoids.log")
+restored = float(re.search(r"p ([0-9.e+-]+) -> ", open("hold_ovoids_dempla_hertz.log").read()).group(1))
 checks = {
     f"the D-file's axes to 1e-12 (largest 1 - |cos| {axis_error:.1e})": axis_error <= 1e-12,
     f"aspect ratio 0.8 for every particle ({sorted(aspect)})": aspect == {0.8},
@@ -161,6 +164,9 @@ checks = {
     # to 1e-8: the logs print p to 9 digits
     f"mean_semi_axis against halfwidth: p ratio {ratio:.10f}, sqrt(2.8 / 3) = {np.sqrt(2.8 / 3):.10f} (1e-8)":
     abs(ratio - np.sqrt(2.8 / 3)) <= 1e-8,
+    # to 1e-5: the hold prints p to 6 digits
+    f"restored mean_semi_axis checkpoint: p {restored:g} Pa as imported (1e-5)":
+    abs(restored / logged_p("import_ovoids_dempla_hertz.log") - 1) <= 1e-5,
 }
 for name, ok in checks.items():
     print(("ok: " if ok else "FAIL: ") + name)

@@ -23,18 +23,16 @@
 #                    with DEMPLA's scaled mass, which the script reads from DEMPLA's output)
 #   aniso_oval       aniso with the paper configs' increments (1e-4, relaxed to 1e-2)
 #   aniso_qs         aniso's quasi-static mode (increments of 3e-5, each minimised to 1e-3)
-#   dempla_exact     dempla_default with each grain's own mass and moments of inertia (iexact 1; ovoids
-#                    then turn by Euler's equations), still density-scaled
-#   dempla_slow      dempla_default at a tenth of the rate (1e-7 a step, I = 8.1e-5)
-#   aniso_slow       aniso_default at I = 8.1e-5
+#   dempla_slow      dempla_default at a tenth of the rate (1e-7 a step; I = 8.1e-5 on Dsphere_1800)
+#   aniso_slow       aniso_default at a tenth of DEMPLA's inertial number
 #   aniso_body       aniso set as DEMPLA is: global damping of the fluctuating motion (0.071 of
 #                    aniso's critical = DEMPLA's 0.03 of its own, see docs/validation.md), no
 #                    contact damping
 #   aniso_body_spin  aniso_body with the spin damped 6 times as fast (global_damping_spin_factor 6): the
 #                    damping torque of DEMPLA's samples (moment 5x a sphere's, spin rate 1.18x)
 #   aniso_halfwidth  aniso_default with the paper configs' Hertz radius of ovoids (halfwidth: a_i a_j /
-#                    (a_i + a_j), 0.97-0.91 of DEMPLA's contact stiffness for alpha 0.8-0.5), from its own
-#                    consolidation of the same start
+#                    (a_i + a_j); the same overlap gives 1.03-1.10 times DEMPLA's force for alpha 0.8-0.5),
+#                    from its own consolidation of the same start
 #   aniso_body_spin_slow  aniso_body_spin at a tenth of the rate (the damping rate unchanged)
 # Every run writes WORK_DIR/results/<run>.csv (strain, q13, q23, p, eps_v, void_ratio,
 # coordination); workflows/plots/chart_dem_dempla.py charts them.
@@ -195,7 +193,6 @@ for run in $runs; do
     dempla_default) dempla_load "$run" 1e-6 ;;
     dempla_no_body) dempla_load "$run" 1e-6 pcrit1=0. pcrit2=0. pcrit3=0.05 ;;
     dempla_no_spin_damping) dempla_load "$run" 1e-6 pcrit2=0. ;;
-    dempla_exact) dempla_load "$run" 1e-6 iexact=1 ;;
     dempla_slow) dempla_load "$run" 1e-7 ;;
     aniso_default) aniso_load "$run" dem.load.inertial_number="$fast" ;;
     aniso_halfwidth)
