@@ -162,14 +162,18 @@ int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, co
                             interrupted ? &*interrupted : nullptr);
   protocol::log_timing(logger, summary.timing, summary.wall_seconds, context.comm.size(),
                        {phase_line("relaxation", summary.relaxation_steps, summary.steps,
-                                   summary.relaxation_seconds, summary.wall_seconds)});
+                                   summary.relaxation_seconds, summary.wall_seconds),
+                        fmt::format("checkpoint copies relaxed: {} steps besides, {:.3f} s",
+                                    summary.fork_steps, summary.fork_seconds)});
   if (!summary.interrupted_checkpoint.empty()) return static_cast<int>(ExitCode::interrupted);
+  // The copies' steps are not the loading's, but they take the same wall time per step.
+  const std::int64_t all_steps = summary.steps + summary.fork_steps;
   logger->info(
       "load done: strain {:.4g} in {} steps ({} of them relaxing, after increments and before "
-      "checkpoints), {:.1f} s wall ({:.3g} particle-steps/s); peak stress ratio {:.4f} at strain {:.4g}",
-      summary.final_strain, summary.steps, summary.relaxation_steps, summary.wall_seconds,
-      static_cast<double>(summary.steps) * static_cast<double>(simulation.n_particles()) /
-          summary.wall_seconds,
+      "checkpoints; {} more relaxing the checkpoints' copies), {:.1f} s wall ({:.3g} particle-steps/s); "
+      "peak stress ratio {:.4f} at strain {:.4g}",
+      summary.final_strain, summary.steps, summary.relaxation_steps, summary.fork_steps, summary.wall_seconds,
+      static_cast<double>(all_steps) * static_cast<double>(simulation.n_particles()) / summary.wall_seconds,
       summary.peak_stress_ratio, summary.peak_strain);
   return 0;
 }

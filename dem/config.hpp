@@ -100,6 +100,9 @@ struct EquilibriumConfig {
   double margin = 0.1;             ///< a verified relaxation first reaches this fraction of the tolerances
   std::int64_t max_steps = 500000; ///< a relaxation that needs more stops with exit 5
   bool at_checkpoints = true;      ///< relax before writing each load checkpoint
+  /// Relax a copy of the loading state for each checkpoint and go on loading from the state
+  /// itself: the path is that of a loading without relaxations, every checkpoint static.
+  bool fork_checkpoints = false;
 };
 
 struct DemConfig {

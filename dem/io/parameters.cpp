@@ -464,6 +464,10 @@ const std::vector<Parameter>& parameters() {
       {.key = "dem.equilibrium.at_checkpoints",
        .config = &member<&D::equilibrium, &EquilibriumConfig::at_checkpoints>,
        .help = "relax to equilibrium (cell held, p servoed) before each load checkpoint"},
+      {.key = "dem.equilibrium.fork_checkpoints",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::fork_checkpoints>,
+       .help = "with at_checkpoints: relax a copy of the state for each checkpoint and go on loading from "
+               "the unrelaxed state, so that the loading path is that of a run without relaxations"},
       {.key = "dem.load.increment",
        .config = &member<&D::load, &LoadConfig::increment>,
        .unit = units::none,
@@ -611,6 +615,9 @@ void check_consistency(const DemConfig& c) {
   require_input(
       !c.load.quasi_static || c.load.increment > 0,
       "config: dem.load.quasi_static needs dem.load.increment > 0 (the strain of each affine step)");
+  require_input(!c.equilibrium.fork_checkpoints || c.equilibrium.at_checkpoints,
+                "config: dem.equilibrium.fork_checkpoints needs dem.equilibrium.at_checkpoints = true (it "
+                "says how the checkpoints are relaxed, not whether)");
   // load_NNN.h5 is numbered in list order and the loading passes each strain once.
   const auto& l = c.load;
   for (std::size_t k = 0; k < l.checkpoint_strains.size(); ++k) {

@@ -222,13 +222,17 @@ public:
   bool relax_increment(double strain, const RelaxationState* resume, const StrainSchedule& schedule);
   void append_history_row() { history_.append(history_row(simulation_, config_)); }
   bool write_checkpoint(double strain, const RelaxationState* resume, const StrainSchedule& schedule);
+  void write_state(std::size_t index, double strain, const Simulation& state);
   // SIGTERM (a SLURM time limit or scancel) ends the run at a control update, every rank at
   // the same step, with a checkpoint from which --resume continues exactly: the increments,
   // history rows and checkpoints ahead all follow from the strain, and a relaxation stopped in
   // from its /relaxation group (dem/io/relaxation_state.hpp).
   void write_interrupted(double strain);
-  bool relax(const EquilibriumConfig& tolerances, const std::string& label, const RelaxationState* resume,
-             io::InterruptedRelaxation where);
+  bool relax(Simulation& simulation, const EquilibriumConfig& tolerances, const std::string& label,
+             const RelaxationState* resume, io::InterruptedRelaxation where);
+  // dem.equilibrium.fork_checkpoints: a copy of the state relaxed and written; false when it
+  // stopped on SIGTERM, the copy dropped (a resume relaxes a new one from the same state).
+  bool write_fork(std::size_t index, double strain, const StrainSchedule& schedule);
   LoadSummary finish(std::int64_t start_step, double wall_seconds);
 
 private:
@@ -280,6 +284,10 @@ void LoadingRun::affine_increment(double end, Phase& loading) {
   simulation_.reconfigure(settings);
 }
 
+// The purpose of an interrupted file whose checkpoint copy was being relaxed: the file holds the
+// loading's state, and a resume relaxes a new copy of it (the same bits: the copy starts from it).
+constexpr const char* fork_purpose = "checkpoint_fork";
+
 // Which of the load's relaxations is under way, for a resume to continue it in its place.
 io::InterruptedRelaxation where_in_load(const std::string& purpose, double strain,
                                         const StrainSchedule& schedule) {
@@ -292,9 +300,9 @@ io::InterruptedRelaxation where_in_load(const std::string& purpose, double strai
   return where;
 }
 
-bool LoadingRun::relax(const EquilibriumConfig& tolerances, const std::string& label,
+bool LoadingRun::relax(Simulation& simulation, const EquilibriumConfig& tolerances, const std::string& label,
                        const RelaxationState* resume, io::InterruptedRelaxation where) {
-  const Relaxation relaxed = relax_to_equilibrium(simulation_, tolerances, config_.equilibrium.max_steps,
+  const Relaxation relaxed = relax_to_equilibrium(simulation, tolerances, config_.equilibrium.max_steps,
                                                   logger_, label, {.stoppable = true, .resume = resume});
   // A resumed relaxation's steps before the stop were counted by the run that stopped.
   const std::int64_t earlier = resume != nullptr ? resume->steps : 0;
@@ -311,32 +319,60 @@ bool LoadingRun::relax_increment(double strain, const RelaxationState* resume,
   EquilibriumConfig tolerances = config_.equilibrium;
   tolerances.tolerance = config_.load.increment_tolerance;
   tolerances.verify_steps = 0;
-  return relax(tolerances, fmt::format("relaxation after the increment to strain {:.5g}", strain), resume,
+  return relax(simulation_, tolerances,
+               fmt::format("relaxation after the increment to strain {:.5g}", strain), resume,
                where_in_load("increment", strain, schedule));
 }
 
 bool LoadingRun::write_checkpoint(double strain, const RelaxationState* resume,
                                   const StrainSchedule& schedule) {
   const std::size_t index = schedule.checkpoint();
-  const std::string path = load_checkpoint_path(output_dir_, index);
+  if (config_.equilibrium.fork_checkpoints) return write_fork(index, strain, schedule);
   if (config_.equilibrium.at_checkpoints) {
-    if (!relax(config_.equilibrium, fmt::format("relaxation before checkpoint {}", index), resume,
-               where_in_load("checkpoint", strain, schedule)))
+    if (!relax(simulation_, config_.equilibrium, fmt::format("relaxation before checkpoint {}", index),
+               resume, where_in_load("checkpoint", strain, schedule)))
       return false;
     append_history_row(); // the relaxed state, at the same strain
   }
+  write_state(index, strain, simulation_);
+  return true;
+}
+
+bool LoadingRun::write_fork(std::size_t index, double strain, const StrainSchedule& schedule) {
+  // The copy shares nothing the loading reads on: relaxing it leaves the loading's bits alone.
+  Simulation copy = simulation_;
+  const std::int64_t before = summary_.relaxation_steps;
+  const double seconds_before = summary_.relaxation_seconds;
+  const bool relaxed =
+      relax(copy, config_.equilibrium, fmt::format("relaxation of checkpoint {}'s copy", index), nullptr,
+            where_in_load(fork_purpose, strain, schedule));
+  summary_.fork_steps += summary_.relaxation_steps - before;
+  summary_.fork_seconds += summary_.relaxation_seconds - seconds_before;
+  summary_.relaxation_steps = before;
+  summary_.relaxation_seconds = seconds_before;
+  if (!relaxed) {
+    // The loading's own state is what the interrupted file holds; the copy's progress is dropped.
+    interrupted_->state = RelaxationState{};
+    interrupted_->state.memory = {simulation_.control(), simulation_.settings(),
+                                  simulation_.watching_equilibrium()};
+    return false;
+  }
+  write_state(index, strain, copy);
+  return true;
+}
+
+void LoadingRun::write_state(std::size_t index, double strain, const Simulation& state) {
+  const std::string path = load_checkpoint_path(output_dir_, index);
   // The log reports the ratios measured for the file: simulation.equilibrium() is stale
   // when equilibrium is not watched (no relaxation at checkpoints).
   const ScopedSection writing(output_, 0);
-  const h5::Checkpoint checkpoint = io::write_checkpoint(path, simulation_, labels_, provenance_);
+  const h5::Checkpoint checkpoint = io::write_checkpoint(path, state, labels_, provenance_);
   if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
   logger_->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
                 "ratio {:.2e}, kinetic/elastic {:.2e})",
-                index, strain, path, mean_stress_compression_positive(simulation_.stress()),
-                simulation_.servo_error(), checkpoint.unbalanced_force_ratio,
-                checkpoint.kinetic_elastic_ratio);
+                index, strain, path, mean_stress_compression_positive(state.stress()), state.servo_error(),
+                checkpoint.unbalanced_force_ratio, checkpoint.kinetic_elastic_ratio);
   summary_.checkpoints.push_back(path);
-  return true;
 }
 
 void LoadingRun::write_interrupted(double strain) {
@@ -384,7 +420,16 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
                             "continue it with aniso-dem {} --resume",
                             pending != nullptr ? interrupted->command : "",
                             pending != nullptr ? interrupted->command : ""));
-  const bool pending_checkpoint = pending != nullptr && interrupted->purpose == "checkpoint";
+  const bool pending_fork = pending != nullptr && interrupted->purpose == fork_purpose;
+  const bool pending_checkpoint =
+      pending != nullptr && (interrupted->purpose == "checkpoint" || pending_fork);
+  require_input(pending_fork == config.equilibrium.fork_checkpoints || !pending_checkpoint,
+                pending_fork
+                    ? "load --resume: the input stopped while relaxing a checkpoint's copy, so its run "
+                      "had dem.equilibrium.fork_checkpoints = true; resume it with the same setting"
+                    : "load --resume: the input stopped while relaxing the loading's own state before "
+                      "a checkpoint, so its run had dem.equilibrium.fork_checkpoints = false; resume "
+                      "it with the same setting");
   run.start_history(resuming, pending != nullptr ? &pending->memory : nullptr);
   // A quasi-static run's events follow its schedule's strains, which the cell's strain rounds.
   const auto strain_now = [&] {

@@ -24,6 +24,9 @@ struct LoadSummary {
   std::int64_t steps = 0;
   std::int64_t relaxation_steps = 0; ///< of `steps`, spent relaxing (after increments, before checkpoints)
   double relaxation_seconds = 0;     ///< wall time of those
+  /// Not of `steps`: spent relaxing the copies written as checkpoints (dem.equilibrium.fork_checkpoints).
+  std::int64_t fork_steps = 0;
+  double fork_seconds = 0; ///< wall time of those
   double wall_seconds = 0;
   std::vector<TimingRow> timing; ///< where the wall time went (common/timer.hpp)
   std::vector<std::string> checkpoints;

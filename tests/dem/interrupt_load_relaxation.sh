@@ -17,13 +17,8 @@ status=0
 enter_fresh_folder "$work"
 dem=$build/dem/aniso-dem
 export OMPI_MCA_mpi_yield_when_idle=1
-settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycles=1
-          --set dem.prepare.void_ratio_tolerance=1
-          --set dem.equilibrium.tolerance=1e-3 --set dem.equilibrium.verify_steps=2000
-          --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
-          --set dem.equilibrium.at_checkpoints=true
-          --set dem.load.final_strain=0.004 --set 'dem.load.checkpoint_strains=[0.002, 0.004]'
-          --set dem.load.history_interval=1e-3)
+small_relaxing_load
+settings+=(--set dem.equilibrium.at_checkpoints=true)
 "$dem" prepare "${settings[@]}" --set dem.output_dir=. --log-level warn
 "$dem" load "${settings[@]}" --set dem.output_dir=whole --input prepared.h5 --log-level debug >whole.log 2>&1
 

@@ -7,6 +7,18 @@ small_prepared_assembly() {
     --set dem.prepare.initial_solid_fraction=0.35 --set dem.output_dir="$2" --log-level warn
 }
 
+# small_relaxing_load: the array `settings` (--set options) of 200 spheres prepared in one fast
+# cycle and loaded to 0.4% with checkpoints at 0.2% and 0.4%, relaxations to 1e-3 verified over
+# 2000 steps: the tests of relaxations inside a load.
+small_relaxing_load() {
+  settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycles=1
+            --set dem.prepare.void_ratio_tolerance=1
+            --set dem.equilibrium.tolerance=1e-3 --set dem.equilibrium.verify_steps=2000
+            --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
+            --set dem.load.final_strain=0.004 --set 'dem.load.checkpoint_strains=[0.002, 0.004]'
+            --set dem.load.history_interval=1e-3)
+}
+
 # expect_exit CODE NAME PATTERN COMMAND...: runs COMMAND with its output in NAME.log; unless it
 # exits CODE with a line matching PATTERN (grep basic regex), prints the log and sets status=1.
 expect_exit() {
