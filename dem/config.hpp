@@ -62,14 +62,23 @@ struct PrepareConfig {
   std::int64_t refinement_cycles = 6;     ///< most re-runs of a cycle with a weaker agitation
 };
 
+/// dem.load.behaviour: a named set of defaults for how the sheared assembly dissipates and how its
+/// checkpoints are made static (dem/load_behaviour.hpp; docs/methods/dem.md, "Loading behaviours").
+enum class LoadBehaviour : std::uint8_t {
+  inertial = 0, ///< continuous loading, contact damping on sticking contacts only: the engine's defaults
+  oval = 1,     ///< DEMPLA/OVAL's damped loading (body damping of translation and spin), forked checkpoints
+  quasi_static = 2, ///< affine increments, each minimised to a static state
+};
+
 struct LoadConfig {
-  double inertial_number = 1e-3;          ///< sets the strain rate: I = rate D50 sqrt(rho / p)
-  double final_strain = 0.2;              ///< compressive eps11 magnitude at the end
-  double mean_stress = 100e3;             ///< p held constant [Pa]
-  std::vector<double> checkpoint_strains; ///< compressive strains at which to write checkpoints
-  double history_interval = 1e-4;         ///< strain between history rows
-  double increment = 0;                   ///< strain per increment, each followed by a relaxation (0: none)
-  double increment_tolerance = 1e-2;      ///< unbalanced-force ratio that ends an increment's relaxation
+  LoadBehaviour behaviour = LoadBehaviour::inertial; ///< sets the defaults of the keys it names
+  double inertial_number = 1e-3;                     ///< sets the strain rate: I = rate D50 sqrt(rho / p)
+  double final_strain = 0.2;                         ///< compressive eps11 magnitude at the end
+  double mean_stress = 100e3;                        ///< p held constant [Pa]
+  std::vector<double> checkpoint_strains;            ///< compressive strains at which to write checkpoints
+  double history_interval = 1e-4;                    ///< strain between history rows
+  double increment = 0;              ///< strain per increment, each followed by a relaxation (0: none)
+  double increment_tolerance = 1e-2; ///< unbalanced-force ratio that ends an increment's relaxation
   /// Athermal quasi-static loading: each increment is one affine step of the cell, then minimised
   /// to increment_tolerance; the path depends on the increment size alone, not on a rate.
   bool quasi_static = false;

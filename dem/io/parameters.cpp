@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "dem/load_behaviour.hpp"
 #include "dem/measures.hpp"
 #include "dem/model/integrator.hpp"
 #include "dem/model/particle_shape.hpp"
@@ -464,6 +465,13 @@ const std::vector<Parameter>& parameters() {
       {.key = "dem.equilibrium.at_checkpoints",
        .config = &member<&D::equilibrium, &EquilibriumConfig::at_checkpoints>,
        .help = "relax to equilibrium (cell held, p servoed) before each load checkpoint"},
+      {.key = "dem.load.behaviour",
+       .config = choice<&D::load, &LoadConfig::behaviour>(),
+       .help = "named loading behaviour, read before the keys it sets (a key given explicitly wins): "
+               "'inertial' (continuous, contact damping on sticking contacts), 'oval' (DEMPLA/OVAL's body "
+               "damping of translation and spin, no contact damping, checkpoints relaxed as copies) or "
+               "'quasi_static' (increments of 3e-5, each minimised to 1e-3); docs/methods/dem.md",
+       .words = load_behaviour_words()},
       {.key = "dem.equilibrium.fork_checkpoints",
        .config = &member<&D::equilibrium, &EquilibriumConfig::fork_checkpoints>,
        .help = "with at_checkpoints: relax a copy of the state for each checkpoint and go on loading from "
@@ -644,8 +652,14 @@ bool differs(double configured, double stored) {
 
 DemConfig read_dem_config(config::Reader& reader) {
   DemConfig config;
-  for (const Parameter& parameter : parameters())
-    if (!parameter.key.empty()) read_parameter(parameter, reader, config);
+  // The behaviour first: it sets the defaults of the keys it names, which are read after it.
+  const auto is_behaviour = [](const Parameter& parameter) { return parameter.key == "dem.load.behaviour"; };
+  const auto& table = parameters();
+  const auto behaviour = std::find_if(table.begin(), table.end(), is_behaviour);
+  read_parameter(*behaviour, reader, config);
+  apply_load_behaviour(config.load.behaviour, config);
+  for (const Parameter& parameter : table)
+    if (!parameter.key.empty() && !is_behaviour(parameter)) read_parameter(parameter, reader, config);
   check_consistency(config);
   return config;
 }
