@@ -227,7 +227,7 @@ public:
   // the same step, with a checkpoint from which --resume continues exactly: the increments,
   // history rows and checkpoints ahead all follow from the strain, and a relaxation stopped in
   // from its /relaxation group (dem/io/relaxation_state.hpp).
-  void write_interrupted(double strain);
+  void write_interrupted(double strain, const std::string& why = "stopped on SIGTERM");
   bool relax(Simulation& simulation, const EquilibriumConfig& tolerances, const std::string& label,
              const RelaxationState* resume, io::InterruptedRelaxation where);
   // dem.equilibrium.fork_checkpoints: a copy of the state relaxed and written; false when it
@@ -343,18 +343,32 @@ bool LoadingRun::write_fork(std::size_t index, double strain, const StrainSchedu
   Simulation copy = simulation_;
   const std::int64_t before = summary_.relaxation_steps;
   const double seconds_before = summary_.relaxation_seconds;
-  const bool relaxed =
-      relax(copy, config_.equilibrium, fmt::format("relaxation of checkpoint {}'s copy", index), nullptr,
-            where_in_load(fork_purpose, strain, schedule));
+  // What the interrupted file holds, whether a SIGTERM or the step budget ends the copy's
+  // relaxation: the loading's own state, from which a resume relaxes a new copy.
+  const auto keep_loading = [&] {
+    interrupted_ = where_in_load(fork_purpose, strain, schedule);
+    interrupted_->state.memory = {simulation_.control(), simulation_.settings(),
+                                  simulation_.watching_equilibrium()};
+  };
+  bool relaxed = false;
+  try {
+    relaxed = relax(copy, config_.equilibrium, fmt::format("relaxation of checkpoint {}'s copy", index),
+                    nullptr, where_in_load(fork_purpose, strain, schedule));
+  } catch (const ConvergenceError& error) {
+    // Every rank fails at the same step (the budget is counted alike), so all write the file.
+    keep_loading();
+    write_interrupted(strain, fmt::format("checkpoint {}'s copy did not reach equilibrium", index));
+    if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
+    throw ConvergenceError(fmt::format("{}. The loading's own state is kept in {}: --resume it with a larger "
+                                       "dem.equilibrium.max_steps or a looser tolerance to relax a new copy",
+                                       error.what(), summary_.interrupted_checkpoint));
+  }
   summary_.fork_steps += summary_.relaxation_steps - before;
   summary_.fork_seconds += summary_.relaxation_seconds - seconds_before;
   summary_.relaxation_steps = before;
   summary_.relaxation_seconds = seconds_before;
   if (!relaxed) {
-    // The loading's own state is what the interrupted file holds; the copy's progress is dropped.
-    interrupted_->state = RelaxationState{};
-    interrupted_->state.memory = {simulation_.control(), simulation_.settings(),
-                                  simulation_.watching_equilibrium()};
+    keep_loading(); // the copy's progress is dropped
     return false;
   }
   write_state(index, strain, copy);
@@ -375,14 +389,14 @@ void LoadingRun::write_state(std::size_t index, double strain, const Simulation&
   summary_.checkpoints.push_back(path);
 }
 
-void LoadingRun::write_interrupted(double strain) {
+void LoadingRun::write_interrupted(double strain, const std::string& why) {
   summary_.interrupted_checkpoint = output_dir_ + "/load_interrupted.h5";
   const ScopedSection writing(output_, 0);
   io::write_interrupted_checkpoint(summary_.interrupted_checkpoint, simulation_, labels_, provenance_,
                                    interrupted_ ? &*interrupted_ : nullptr);
-  logger_->warn(
-      "load: stopped on SIGTERM at strain {:.6g} (step {}): wrote {}; continue with --input {} --resume",
-      strain, simulation_.step_count(), summary_.interrupted_checkpoint, summary_.interrupted_checkpoint);
+  logger_->warn("load: {} at strain {:.6g} (step {}): wrote {}; continue with --input {} --resume", why,
+                strain, simulation_.step_count(), summary_.interrupted_checkpoint,
+                summary_.interrupted_checkpoint);
 }
 
 LoadSummary LoadingRun::finish(std::int64_t start_step, double wall_seconds) {

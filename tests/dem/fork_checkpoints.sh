@@ -6,7 +6,8 @@
 #   it holds p within 1e-3 over a 2000-step fixed-cell hold where the unrelaxed one does not;
 # - SIGTERM while a copy relaxes: exit 143, load_interrupted.h5 holds the loading's state (purpose
 #   checkpoint_fork), the checkpoint before it intact; --resume on 2 ranks gives the bits of the
-#   uninterrupted run; a resume without fork_checkpoints is refused (exit 2, naming the key).
+#   uninterrupted run; a resume without fork_checkpoints is refused (exit 2, naming the key);
+# - a copy out of its step budget: exit 5 naming the kept loading state, resumed to the same bits.
 #
 # usage: fork_checkpoints.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -51,5 +52,14 @@ mpiexec --oversubscribe -n 2 "$dem" load "${fork[@]}" --set dem.output_dir=cut -
 [ "$(md5sum <cut/load_000.h5)" = "$first" ] || { echo "FAIL: load_000.h5 changed"; status=1; }
 expect_same_state "interrupted and resumed" whole/load_001.h5 cut/load_001.h5
 expect_same_history "interrupted and resumed" whole/history.h5 cut/history.h5
+# The step budget ends checkpoint 0's copy: exit 5, and the loading's state is kept in
+# load_interrupted.h5 with its history; --resume with the budget relaxes a new copy, to the same bits.
+expect_exit 5 budget "load_interrupted.h5: --resume it with a larger dem.equilibrium.max_steps" \
+  "$dem" load "${fork[@]}" --set dem.equilibrium.max_steps=500 --set dem.output_dir=budget --input prepared.h5
+h5dump -a /relaxation/purpose budget/load_interrupted.h5 | grep -q '"checkpoint_fork"' ||
+  { echo "FAIL: the budget's load_interrupted.h5 holds no checkpoint_fork in /relaxation"; status=1; }
+"$dem" load "${fork[@]}" --set dem.output_dir=budget --input budget/load_interrupted.h5 --resume --log-level warn
+for k in 000 001; do expect_same_state "out of budget, then resumed" whole/load_$k.h5 budget/load_$k.h5; done
+expect_same_history "out of budget, then resumed" whole/history.h5 budget/history.h5
 [ $status = 0 ] && echo "forked checkpoints: the unrelaxed path, relaxed copies, resumed to the same bits"
 exit $status
