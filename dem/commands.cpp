@@ -287,7 +287,7 @@ int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, c
   h5::Checkpoint result;
   {
     const ScopedSection writing(writing_times, 0);
-    result = io::write_checkpoint(output, simulation, labels, provenance);
+    result = io::write_checkpoint(output, simulation, labels, provenance, io::relaxation_record(relaxed));
   }
   context.logger->info(
       "relax of '{}': {} steps ({} verifying, {} windows left), p {:.6g} -> {:.6g} Pa, void ratio {:.5f} -> "

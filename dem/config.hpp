@@ -106,6 +106,9 @@ struct EquilibriumConfig {
   /// After a window failed on the kinetic growth, time steps of the run's own dynamics with the
   /// servo on, so that the unstable balance falls to another before minimising again.
   std::int64_t escape_steps = 20000;
+  /// After this many verification windows left, the relaxation ends unverified at the state the
+  /// last window began from (balanced, held for fewer steps; 0: never, it runs to max_steps).
+  std::int64_t max_windows = 0;
   double margin = 0.1;             ///< a verified relaxation first reaches this fraction of the tolerances
   std::int64_t max_steps = 500000; ///< a relaxation that needs more stops with exit 5
   bool at_checkpoints = true;      ///< relax before writing each load checkpoint

@@ -5,10 +5,11 @@
 #   oval          DEMPLA/OVAL's body damping of translation (0.071) and spin (x6), no contact damping
 #   quasi_static  increments of 3e-5, each minimised to 1e-3
 #   increments    the paper configs' setting before the behaviours: OVAL's increments of 1e-4 relaxed to 1e-2
-# with static checkpoints at 2%, 10% and FINAL: relaxed copies for the continuous loadings
-# (dem.equilibrium.fork_checkpoints, so that the path is the loading's own), relaxed in place for
-# quasi_static, none for increments (as the paper configs had it before they took 'oval'). Each run writes
-# WORK/results/<assembly>_<behaviour>.csv (strain, q13, q23, p, eps_v, void_ratio, coordination) and
+# with checkpoints at 2%, 10% and FINAL written unrelaxed: a loading with relaxed copies as
+# checkpoints (dem.equilibrium.fork_checkpoints, the oval behaviour's) has the same history to the
+# bit (tests/dem/fork_checkpoints.sh), and the ovoids' copies can take longer than the loading.
+# Each run writes WORK/results/<assembly>_<behaviour>.csv (strain, q13, q23, p, eps_v, void_ratio,
+# coordination) and
 # WORK/<assembly>_<behaviour>/ (history, checkpoints, log, wall.txt); a run whose CSV exists is skipped.
 #
 # usage: workflows/load_behaviours.sh BUILD WORK FINAL NAME=CONFIG:PREPARED.h5 ... [-- BEHAVIOUR ...]
@@ -30,12 +31,9 @@ for assembly in "${assemblies[@]}"; do
     run=${name}_$behaviour
     [ -s "$work/results/$run.csv" ] && { echo "$run: done before"; continue; }
     case $behaviour in
-      inertial) extra=(--set dem.load.behaviour=inertial --set dem.equilibrium.at_checkpoints=true
-                       --set dem.equilibrium.fork_checkpoints=true) ;;
-      oval) extra=(--set dem.load.behaviour=oval --set dem.equilibrium.at_checkpoints=true) ;;
-      quasi_static) extra=(--set dem.load.behaviour=quasi_static --set dem.equilibrium.at_checkpoints=true) ;;
+      inertial | oval | quasi_static) extra=(--set dem.load.behaviour=$behaviour) ;;
       increments) extra=(--set dem.load.behaviour=inertial --set dem.load.increment=1e-4
-                         --set dem.load.increment_tolerance=1e-2 --set dem.equilibrium.at_checkpoints=false) ;;
+                         --set dem.load.increment_tolerance=1e-2) ;;
       *) echo "unknown behaviour '$behaviour'"; exit 2 ;;
     esac
     echo "$run: loading to $final ($(uptime | sed 's/.*load/load/'))"
@@ -43,7 +41,8 @@ for assembly in "${assemblies[@]}"; do
     "$build/dem/aniso-dem" load --config "$config" --input "$prepared" --set dem.output_dir="$work/$run" \
       --set dem.particles.count="$count" \
       --set dem.load.final_strain="$final" --set "dem.load.checkpoint_strains=[0.02, 0.1, $final]" \
-      --set dem.load.history_interval=5e-4 "${extra[@]}" --overwrite >"$work/$run.log" 2>&1
+      --set dem.load.history_interval=5e-4 "${extra[@]}" --set dem.equilibrium.at_checkpoints=false \
+      --set dem.equilibrium.fork_checkpoints=false --overwrite >"$work/$run.log" 2>&1
     echo $((SECONDS - start)) >"$work/$run/wall.txt"
     $io aniso "$work/$run/history.csv" "$work/results/$run.csv"
   done

@@ -462,6 +462,11 @@ const std::vector<Parameter>& parameters() {
        .range = Range::closed(1.0, 4.0),
        .help = "largest time step of the FIRE minimiser, in the run's time steps (kept below the "
                "Rayleigh step)"},
+      {.key = "dem.equilibrium.max_windows",
+       .config = &member<&D::equilibrium, &EquilibriumConfig::max_windows>,
+       .range = Range::non_negative(),
+       .help = "verification windows a relaxation may leave before it ends unverified at the balance the "
+               "last window began from, its held steps recorded (0: no limit, it runs to max_steps)"},
       {.key = "dem.equilibrium.at_checkpoints",
        .config = &member<&D::equilibrium, &EquilibriumConfig::at_checkpoints>,
        .help = "relax to equilibrium (cell held, p servoed) before each load checkpoint"},

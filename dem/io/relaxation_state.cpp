@@ -130,6 +130,13 @@ InterruptedRelaxation read_relaxation(const h5::Group& group) {
 
 } // namespace
 
+std::function<void(h5::File&)> relaxation_record(const protocol::Relaxation& relaxed) {
+  return [held = relaxed.held_steps, verified = relaxed.verified](h5::File& file) {
+    file.write_attribute<std::int64_t>("static_held_steps", held);
+    file.write_attribute<std::uint8_t>("static_verified", verified ? 1 : 0);
+  };
+}
+
 void write_interrupted_checkpoint(const std::string& path, const Simulation& simulation,
                                   const CheckpointLabels& labels, const h5::Provenance& provenance,
                                   const InterruptedRelaxation* relaxation) {

@@ -9,6 +9,7 @@
 #include "dem/protocol/relax.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -31,6 +32,11 @@ void write_interrupted_checkpoint(const std::string& path, const Simulation& sim
 
 /// The /relaxation group of the checkpoint at `path`, if it has one (every rank reads it).
 std::optional<InterruptedRelaxation> read_interrupted_relaxation(const std::string& path);
+
+/// What a checkpoint written after a relaxation records of it: root attributes
+/// `static_held_steps` (the steps the state stayed static at the fixed cell) and `static_verified`
+/// (1 when that was the whole verification window, 0 when it ended on max_windows).
+std::function<void(h5::File&)> relaxation_record(const protocol::Relaxation& relaxed);
 
 /// Where a command writing `output` leaves its interrupted state: `output` with "_interrupted"
 /// before its extension (relaxed.h5 -> relaxed_interrupted.h5).

@@ -246,6 +246,7 @@ private:
   SectionTimes output_{{"output"}}; // checkpoints and the history written, for the timing table
   LoadSummary summary_;
   std::optional<io::InterruptedRelaxation> interrupted_; // a relaxation stopped on SIGTERM
+  Relaxation last_relaxation_;                           // recorded in a checkpoint relaxed for it
 };
 
 void LoadingRun::start_history(bool resuming, const PhaseMemory* memory) {
@@ -304,6 +305,7 @@ bool LoadingRun::relax(Simulation& simulation, const EquilibriumConfig& toleranc
                        const RelaxationState* resume, io::InterruptedRelaxation where) {
   const Relaxation relaxed = relax_to_equilibrium(simulation, tolerances, config_.equilibrium.max_steps,
                                                   logger_, label, {.stoppable = true, .resume = resume});
+  last_relaxation_ = relaxed;
   // A resumed relaxation's steps before the stop were counted by the run that stopped.
   const std::int64_t earlier = resume != nullptr ? resume->steps : 0;
   summary_.relaxation_steps += relaxed.steps - earlier;
@@ -380,7 +382,10 @@ void LoadingRun::write_state(std::size_t index, double strain, const Simulation&
   // The log reports the ratios measured for the file: simulation.equilibrium() is stale
   // when equilibrium is not watched (no relaxation at checkpoints).
   const ScopedSection writing(output_, 0);
-  const h5::Checkpoint checkpoint = io::write_checkpoint(path, state, labels_, provenance_);
+  const h5::Checkpoint checkpoint =
+      io::write_checkpoint(path, state, labels_, provenance_,
+                           config_.equilibrium.at_checkpoints ? io::relaxation_record(last_relaxation_)
+                                                              : std::function<void(h5::File&)>{});
   if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
   logger_->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
                 "ratio {:.2e}, kinetic/elastic {:.2e})",

@@ -48,9 +48,13 @@ struct Relaxation {
   std::int64_t steps = 0;
   std::int64_t verifying_steps = 0; ///< of `steps`, in the verification windows (passed or left)
   int windows_left = 0;             ///< verification windows the state did not stay static through
-  double seconds = 0;               ///< wall time
-  Equilibrium equilibrium;          ///< at the end
-  double stress_error = 0;          ///< |servo error| at the end
+  /// Steps the handed-on state stayed static at the fixed cell: verify_steps when verified, fewer
+  /// when it ended on dem.equilibrium.max_windows (0 when there was no window).
+  std::int64_t held_steps = 0;
+  bool verified = true;    ///< false when it ended on dem.equilibrium.max_windows
+  double seconds = 0;      ///< wall time
+  Equilibrium equilibrium; ///< at the end
+  double stress_error = 0; ///< |servo error| at the end
   /// Set when it stopped on request: the simulation is left as it stood, mid-relaxation.
   std::optional<RelaxationState> interrupted;
 };

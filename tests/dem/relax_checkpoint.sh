@@ -3,7 +3,8 @@
 # (1e-2, no verified relaxation) loses about a fifth of p when its cell is held still; relaxed
 # with its own loading control it holds p within 1e-3 over the same hold, at the same strain and
 # a mean stress within the servo's tolerance, with the same bits on 1 and 2 ranks; a hold as long
-# as its verification window replays that window. Writing over
+# as its verification window replays that window; a relaxation ended on max_windows records the
+# steps it held (static_held_steps, static_verified = 0). Writing over
 # the input is refused and the input is kept.
 #
 # usage: relax_checkpoint.sh BUILD_DIR WORK_DIR
@@ -63,6 +64,21 @@ for group in /particles /contacts /cell; do
   h5diff relaxed/load_000.h5 relaxed_np2/load_000.h5 "$group" "$group" >diff.txt \
     || { echo "FAIL: 2 ranks: relaxed $group differs from 1 rank:"; head -5 diff.txt; status=1; }
 done
+
+# A verified relaxation records its whole window; one that leaves dem.equilibrium.max_windows
+# windows (a stress tolerance of 1e-5 that its balance cannot keep) ends unverified at the balance
+# the last window began from, with the steps it held, which a hold that long replays.
+expect_exit 0 relax_windows "left the verification 2 times (dem.equilibrium.max_windows): ends unverified" \
+  "$dem" relax --input load/load_000.h5 --output unverified.h5 --set dem.equilibrium.tolerance=1e-3 \
+  --set dem.equilibrium.verify_steps=2000 --set dem.equilibrium.stress_tolerance=1e-5 --set dem.equilibrium.max_windows=2
+attribute() { h5dump -a "/$2" "$1" | sed -n 's/.*(0): \([0-9]*\).*/\1/p'; }
+held=$(attribute unverified.h5 static_held_steps)
+[ "$(attribute unverified.h5 static_verified)" = 0 ] && [ "$held" -gt 0 ] && [ "$held" -lt 2000 ] ||
+  { echo "FAIL: unverified.h5 records static_verified $(attribute unverified.h5 static_verified), held '$held'"; status=1; }
+[ "$(attribute relaxed/load_000.h5 static_verified)" = 1 ] && [ "$(attribute relaxed/load_000.h5 static_held_steps)" = 20000 ] ||
+  { echo "FAIL: relaxed/load_000.h5 does not record its verified 20000-step window"; status=1; }
+expect_exit 0 hold_unverified "hold of" "$dem" hold --input unverified.h5 --steps $((held - 4)) --max-drift 1e-5
+expect_exit 5 hold_unverified_longer "above --max-drift" "$dem" hold --input unverified.h5 --steps 2000 --max-drift 1e-5
 
 # The loaded state is never overwritten.
 before=$(md5sum load/load_000.h5)
