@@ -38,8 +38,18 @@ def split(name):
     raise SystemExit(f"chart_dem_behaviours.py: run '{name}' names no behaviour of {list(BEHAVIOURS)}")
 
 
+def aspect_order(assembly):
+    """'spheres' first, then 'ovoids-<alpha>' by falling alpha."""
+    try:
+        return -float(assembly.split("-")[-1])
+    except ValueError:
+        return -1.0 if assembly == "spheres" else 0.0
+
+
 def chart(grid, path):
-    assemblies = sorted({split(n)[0] for n in names_in(grid)})
+    # Spheres first, then flatter and flatter ovoids.
+    assemblies = sorted({split(n)[0] for n in names_in(grid)}, key=aspect_order)
+    handles = {}
     strain = 100 * grid["strain"]
     fig, axes = plt.subplots(len(assemblies), len(COLUMNS), figsize=(13, 3.4 * len(assemblies)), squeeze=False)
     for row, assembly in zip(axes, assemblies):
@@ -49,14 +59,16 @@ def chart(grid, path):
                 if owner != assembly:
                     continue
                 label, colour, style = BEHAVIOURS[behaviour]
-                ax.plot(strain, grid[f"{name}:{q}"] * (100 if q == "eps_v" else 1), style, color=colour, label=label)
+                (handles[behaviour],) = ax.plot(strain, grid[f"{name}:{q}"] * (100 if q == "eps_v" else 1), style,
+                                                color=colour, label=label)
             ax.set_title(f"{assembly}: {title}", fontsize=10)
             ax.grid(alpha=0.3)
     for ax in axes[-1]:
         ax.set_xlabel("compressive strain -eps11 [%]")
-    axes[0, 0].legend(fontsize=8)
+    shown = [b for b in BEHAVIOURS if b in handles]
+    fig.legend([handles[b] for b in shown], [BEHAVIOURS[b][0] for b in shown], loc="lower center", ncol=4, fontsize=9)
     fig.suptitle("Loading behaviours on the same 1000-particle paper-config assemblies (biaxial, constant p)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
     fig.savefig(path, dpi=100)
 
 
