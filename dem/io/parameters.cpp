@@ -465,8 +465,9 @@ const std::vector<Parameter>& parameters() {
       {.key = "dem.equilibrium.max_windows",
        .config = &member<&D::equilibrium, &EquilibriumConfig::max_windows>,
        .range = Range::non_negative(),
-       .help = "verification windows a relaxation may leave before it ends unverified at the balance the "
-               "last window began from, its held steps recorded (0: no limit, it runs to max_steps)"},
+       .help = "verification windows a load checkpoint's or relax's relaxation may leave before it ends "
+               "unverified at the balance the last window began from, its held steps recorded (0: no limit, "
+               "it runs to max_steps; the consolidation always runs to its verification)"},
       {.key = "dem.equilibrium.at_checkpoints",
        .config = &member<&D::equilibrium, &EquilibriumConfig::at_checkpoints>,
        .help = "relax to equilibrium (cell held, p servoed) before each load checkpoint"},

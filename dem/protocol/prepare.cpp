@@ -153,6 +153,9 @@ Relaxation consolidate(Simulation& simulation, const DemConfig& config, double r
     simulation.set_control(model::isotropic_stress(simulation.control(), config.prepare.confining_pressure));
   EquilibriumConfig tolerances = config.equilibrium;
   tolerances.stress_tolerance = config.prepare.consolidation_tolerance;
+  // Every run starts from this state: it is verified static, however many windows that takes
+  // (dem.equilibrium.max_windows is for the checkpoints of a loading in flow).
+  tolerances.max_windows = 0;
   // The run's own time step: a relaxation stopped within FIRE holds FIRE's.
   const double time_step =
       start.resume != nullptr ? start.resume->memory.settings.time_step : simulation.settings().time_step;
