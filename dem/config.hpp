@@ -60,6 +60,9 @@ struct PrepareConfig {
   double agitation_speed = 0.1;           ///< rms random speed between cycles, in units of sqrt(p0/rho)
   double consolidation_tolerance = 0.005; ///< |p - p0| / p0 at the end of consolidation
   std::int64_t refinement_cycles = 6;     ///< most re-runs of a cycle with a weaker agitation
+  /// > 0: one compaction, ended when e falls to this (or at seizure, if earlier), then consolidated
+  /// with the loading's friction: an assembly made at friction_prepare up to a chosen density
+  double compaction_stop_void_ratio = 0.0;
 };
 
 /// dem.load.behaviour: a named set of defaults for how the sheared assembly dissipates and how its

@@ -378,6 +378,14 @@ const std::vector<Parameter>& parameters() {
        .range = Range::closed(0, 100),
        .help = "most re-runs of the cycle that steps across the target (plus the consolidation's compaction) "
                "with a weaker agitation"},
+      {.key = "dem.prepare.compaction_stop_void_ratio",
+       .config = &member<&D::prepare, &PrepareConfig::compaction_stop_void_ratio>,
+       .unit = units::none,
+       .range = Range::non_negative(),
+       .help =
+           "0: the compaction cycles (seize, agitate, repeat); above 0: one compaction at friction_prepare, "
+           "stopped when e falls to this value, then consolidated at the loading friction (e.g. a "
+           "frictionless-made assembly)"},
       {.key = "dem.load.inertial_number",
        .config = &member<&D::load, &LoadConfig::inertial_number>,
        .unit = units::none,

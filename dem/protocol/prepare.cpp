@@ -61,6 +61,10 @@ Compaction compact_until_seized(Simulation& simulation, double rate, const Prepa
   // estimate from p said "ETA 0 s" for most of the way. The pace includes the held phases, so the
   // estimate grows while the cell is held.
   const double start_volume = state.start_volume;
+  // A stop void ratio ends the compaction at a chosen density instead of at seizure: below its
+  // own jamming density a frictionless assembly never seizes (docs/methods/dem.md, "Preparation").
+  const double stop_void_ratio = prepare.compaction_stop_void_ratio;
+  const double solid_volume = stop_void_ratio > 0 ? simulation.solid_volume() : 0.0;
   const double strain_to_seize = std::max(expected_strain, 1e-6);
   Progress progress(logger, label + " (volumetric strain to the expected seizure)", strain_to_seize, 10.0);
   for (;;) {
@@ -76,6 +80,11 @@ Compaction compact_until_seized(Simulation& simulation, double rate, const Prepa
           p / 1e3, prepare.seize_stress / 1e3, holding ? "cell held" : "compacting",
           simulation.equilibrium().unbalanced_force_ratio, prepare.seize_force_ratio);
     });
+    if (stop_void_ratio > 0 && simulation.cell().volume() / solid_volume - 1.0 <= stop_void_ratio) {
+      logger->info("{}: stopped at e = {:.4f} (dem.prepare.compaction_stop_void_ratio), p {:.3g} kPa", label,
+                   simulation.cell().volume() / solid_volume - 1.0, p / 1e3);
+      break;
+    }
     const bool above = p >= prepare.seize_stress;
     // Only a held cell tells a load-bearing network from one that the compaction itself
     // loads: the viscous contact forces of a moving cell carry p of their own.
@@ -312,6 +321,7 @@ private:
   RandomStream sizes_, placement_, agitation_, refinement_stream_;
   Simulation sparse_;
   double rate_ = 0, rms_speed_ = 0;
+  double stop_void_ratio_ = 0;      ///< where the compaction in progress stops (0: at seizure)
   std::vector<Seized> seized_;      // cycles in order, refinements appended as they run
   std::vector<std::size_t> cycles_; // indices into seized_ of the cycles themselves
   int refinements_ = 0;
@@ -320,7 +330,11 @@ private:
 
   double target() const { return config_.prepare.target_void_ratio; }
   double tolerance() const { return config_.prepare.void_ratio_tolerance; }
+  bool stops_at_void_ratio() const { return config_.prepare.compaction_stop_void_ratio > 0; }
   bool cycles_left() const { return static_cast<std::int64_t>(cycles_.size()) < config_.prepare.cycles; }
+  PreparedAssembly run_cycles();
+  PreparedAssembly run_stopped();
+  PreparedAssembly finish(Consolidated best, double aim);
   void run_cycle();
   bool refine(double aim);
   // A seized state and how it was reached ("after N steps", or the file it was taken from).
@@ -359,7 +373,9 @@ Protocol::Seizure Protocol::seize(Simulation simulation, const io::PieceName& na
     simulation = std::move(stopped->simulation);
     simulation.put_back(simulation.control(), simulation.settings(), true); // as kept pieces
   }
-  const Compaction compaction = compact_until_seized(simulation, -rate_, config_.prepare, logger_, label,
+  PrepareConfig compaction_settings = config_.prepare;
+  compaction_settings.compaction_stop_void_ratio = stop_void_ratio_;
+  const Compaction compaction = compact_until_seized(simulation, -rate_, compaction_settings, logger_, label,
                                                      expected, stopped ? &stopped->state : nullptr);
   compaction_seconds_ += compaction.seconds;
   if (compaction.stopped) {
@@ -469,6 +485,15 @@ Consolidated Protocol::consolidate_seized(Seized& seized) {
 }
 
 std::string Protocol::failure_hint(const Consolidated& best, double aim) const {
+  if (stops_at_void_ratio()) {
+    return fmt::format("the compaction stopped at e = {:.4f} and consolidation to p0 compacted it to {:.4f} "
+                       "({} of at most {} corrections of the stop ran): set "
+                       "dem.prepare.compaction_stop_void_ratio to about {:.4f} or raise "
+                       "dem.prepare.refinement_cycles",
+                       best.seized_void_ratio, best.measures.void_ratio, refinements_,
+                       config_.prepare.refinement_cycles,
+                       stop_void_ratio_ + target() - best.measures.void_ratio);
+  }
   if (best.measures.void_ratio > target())
     return "raise dem.prepare.cycles or dem.prepare.agitation_speed, or lower dem.material.friction_prepare "
            "(docs/methods/dem.md, 'Reaching the target void ratio')";
@@ -498,6 +523,34 @@ std::string Protocol::failure_hint(const Consolidated& best, double aim) const {
 // the tolerance of it, else the cycle that steps across the aim is run again from its
 // predecessor with a weaker agitation, chosen to seize at the aim (refinement cycles).
 PreparedAssembly Protocol::run() {
+  return stops_at_void_ratio() ? run_stopped() : run_cycles();
+}
+
+// One compaction from the sparse state, stopped at a void ratio, then consolidated at the loading
+// friction. Consolidation compacts a state that was not load-bearing, by an amount the stop
+// cannot know in advance, so a miss moves the stop by it and the compaction runs again from the
+// sparse state (at most refinement_cycles times, each kept as a refinement of cycle 1).
+PreparedAssembly Protocol::run_stopped() {
+  stop_void_ratio_ = config_.prepare.compaction_stop_void_ratio;
+  run_cycle();
+  std::optional<Consolidated> best;
+  for (;;) {
+    Consolidated candidate = consolidate_seized(seized_.back());
+    const double miss = target() - candidate.measures.void_ratio;
+    if (!best || std::abs(miss) < std::abs(best->measures.void_ratio - target())) best = std::move(candidate);
+    if (std::abs(miss) <= tolerance() || refinements_ >= config_.prepare.refinement_cycles) break;
+    stop_void_ratio_ += miss;
+    ++refinements_;
+    const std::string label =
+        fmt::format("compaction stopped at e = {:.4f} (correction {})", stop_void_ratio_, refinements_);
+    Seizure seized = seize(sparse_, {io::PieceKind::seized, 1, refinements_}, label, last_compaction_strain_);
+    const StateMeasures m = seized.state.measure();
+    seized_.push_back(Seized{std::move(seized.state), m.void_ratio, 1, refinements_, 0.0, false});
+  }
+  return finish(std::move(*best), target());
+}
+
+PreparedAssembly Protocol::run_cycles() {
   const auto& pr = config_.prepare;
   std::optional<Consolidated> best;
   double aim = target();
@@ -528,6 +581,12 @@ PreparedAssembly Protocol::run() {
     if (better) best = std::move(candidate);
     if (distance <= tolerance()) break;
   }
+  return finish(std::move(*best), aim);
+}
+
+PreparedAssembly Protocol::finish(Consolidated best_assembly, double aim) {
+  const auto& pr = config_.prepare;
+  Consolidated* best = &best_assembly;
   const StateMeasures& m = best->measures;
   if (std::abs(m.void_ratio - target()) > tolerance()) {
     std::vector<double> cycle_void_ratios;

@@ -145,4 +145,43 @@ TEST(Prepare, RefinementCyclesRunWhereNoCycleMeetsATightTolerance) {
   }
 }
 
+TEST(Prepare, ACompactionStoppedAtAVoidRatioIsTheOneCycle) {
+  // Frictionless, 150 spheres jam near e = 0.48; stopped at 0.62 they are a gas that never
+  // seizes. The stopped state is the one cycle (no agitation, no further cycles), and its
+  // consolidation at the loading friction compacts it to a load-bearing state at p0.
+  DemConfig config = fast_config(14, 0.6);
+  config.material.friction_prepare = 0.0;
+  config.prepare.compaction_stop_void_ratio = 0.62;
+  const PreparedAssembly made = prepare(config);
+  ASSERT_EQ(made.cycle_void_ratios.size(), 1u);
+  EXPECT_TRUE(made.refinement_void_ratios.empty());
+  EXPECT_LE(made.cycle_void_ratios[0], 0.62);
+  EXPECT_GT(made.cycle_void_ratios[0], 0.62 - 1e-3); // the control update that crossed it
+  EXPECT_LT(made.consolidated.void_ratio, made.cycle_void_ratios[0]);
+  EXPECT_LT(std::abs(made.consolidated.mean_stress - 100e3), 0.02 * 100e3);
+  EXPECT_GT(made.consolidated.coordination_no_rattlers, 4.0); // load-bearing with friction 0.5
+
+  // A target the consolidation misses by more than the tolerance: the stop moves by the miss and
+  // the compaction runs again from the sparse state until the consolidated e is within it.
+  config.prepare.target_void_ratio = made.consolidated.void_ratio + 0.01;
+  config.prepare.void_ratio_tolerance = 0.003;
+  const PreparedAssembly corrected = prepare(config);
+  EXPECT_FALSE(corrected.refinement_void_ratios.empty());
+  EXPECT_GT(corrected.refinement_void_ratios[0], made.cycle_void_ratios[0] + 0.005);
+  EXPECT_LE(std::abs(corrected.consolidated.void_ratio - config.prepare.target_void_ratio), 0.003);
+
+  // Without corrections the failure names the stop to set.
+  config.prepare.refinement_cycles = 0;
+  try {
+    (void)prepare(config);
+    FAIL() << "expected a ConvergenceError";
+  } catch (const ConvergenceError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(fmt::format("set dem.prepare.compaction_stop_void_ratio to about {:.4f}", 0.63)),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(error.code(), ExitCode::convergence_failure);
+  }
+}
+
 } // namespace
