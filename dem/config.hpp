@@ -55,11 +55,12 @@ struct PrepareConfig {
   double inertial_number = 1e-2;                  ///< compaction and consolidation rate, I at p0
   double damping = 0.3;                           ///< contact damping ratio while compacting
   double global_damping = 0.0;                    ///< global damping ratio while compacting
-  double seize_stress = 1e3;                      ///< p at which a compacting assembly counts as seized [Pa]
-  double seize_force_ratio = 1e-2;                ///< unbalanced-force ratio a held, seized assembly is below
-  double agitation_speed = 0.1;           ///< rms random speed between cycles, in units of sqrt(p0/rho)
-  double consolidation_tolerance = 0.005; ///< |p - p0| / p0 at the end of consolidation
-  std::int64_t refinement_cycles = 6;     ///< most re-runs of a cycle with a weaker agitation
+  double global_damping_spin_factor = 1.0; ///< its rate for the spin, as a multiple of the translation's
+  double seize_stress = 1e3;               ///< p at which a compacting assembly counts as seized [Pa]
+  double seize_force_ratio = 1e-2;         ///< unbalanced-force ratio a held, seized assembly is below
+  double agitation_speed = 0.1;            ///< rms random speed between cycles, in units of sqrt(p0/rho)
+  double consolidation_tolerance = 0.005;  ///< |p - p0| / p0 at the end of consolidation
+  std::int64_t refinement_cycles = 6;      ///< most re-runs of a cycle with a weaker agitation
   /// > 0: one compaction, ended when e falls to this (or at seizure, if earlier), then consolidated
   /// with the loading's friction: an assembly made at friction_prepare up to a chosen density
   double compaction_stop_void_ratio = 0.0;

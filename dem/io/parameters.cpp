@@ -353,6 +353,12 @@ const std::vector<Parameter>& parameters() {
        .unit = units::none,
        .range = Range::closed(0.0, 10.0),
        .help = "global damping ratio of the fluctuating motion while compacting"},
+      {.key = "dem.prepare.global_damping_spin_factor",
+       .config = &member<&D::prepare, &PrepareConfig::global_damping_spin_factor>,
+       .unit = units::none,
+       .range = Range::closed(0.0, 100.0),
+       .help = "the spin's global damping rate while compacting, as a multiple of the translation's (the "
+               "loading's dem.integration.global_damping_spin_factor does not act here)"},
       {.key = "dem.prepare.seize_stress",
        .config = &member<&D::prepare, &PrepareConfig::seize_stress>,
        .unit = units::pascal,

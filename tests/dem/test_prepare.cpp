@@ -184,4 +184,23 @@ TEST(Prepare, ACompactionStoppedAtAVoidRatioIsTheOneCycle) {
   }
 }
 
+TEST(Prepare, TheCompactionDampsSpinWithItsOwnFactor) {
+  // The loading's spin factor (the oval behaviour's 6) must not reach the compaction: damping spin
+  // six times as fast while compacting loosened alpha = 0.625's first jam out of the cycles' reach.
+  DemConfig config = fast_config(1, 0.0);
+  config.prepare.global_damping = 0.05;
+  config.integration.global_damping = 0.071;
+  config.integration.global_damping_spin_factor = 6.0;
+  RandomStream sizes(config.seed, 0), placement(config.seed, 1);
+  const Simulation sparse = sparse_assembly(config, sizes, placement, mpi::Comm(MPI_COMM_SELF));
+  EXPECT_EQ(sparse.settings().global_damping, 0.05);
+  EXPECT_EQ(sparse.settings().global_damping_spin_factor, 1.0);
+  config.prepare.global_damping_spin_factor = 3.0;
+  RandomStream sizes2(config.seed, 0), placement2(config.seed, 1);
+  EXPECT_EQ(sparse_assembly(config, sizes2, placement2, mpi::Comm(MPI_COMM_SELF))
+                .settings()
+                .global_damping_spin_factor,
+            3.0);
+}
+
 } // namespace
