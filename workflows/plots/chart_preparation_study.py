@@ -41,7 +41,8 @@ def shape_of(config):
 
 def describe(settings):
     """'--set dem.material.friction_prepare=0' lines -> 'friction_prepare=0, ...' ('paper config')."""
-    pairs = [s.split(".")[-1] for s in settings if s != "--set"]
+    pairs = [f"{key.split('.')[-1]}={value}" for key, value in
+             (s.split("=", 1) for s in settings if s != "--set")]
     return ", ".join(pairs) if pairs else "the paper config"
 
 
@@ -121,7 +122,13 @@ def chart(variants, grid, path):
                     if s in SHAPE_MARKERS else 99)
     strain = 100 * grid["strain"]
     fig, axes = plt.subplots(len(shapes) + 1, 3, figsize=(14, 3.6 * (len(shapes) + 1)), squeeze=False)
-    colours = {r["variant"]: f"C{k % 10}" for k, r in enumerate(loaded)}
+    # One colour per way of preparing (its seeds share it), so that a way's scatter reads as such.
+    # (a frictionless-made way's first stop is only where its corrections start).
+    way = {r["variant"]: ", ".join(p.split("=")[0] if p.startswith("compaction_stop") else p
+                                   for p in r["settings"].split(", ") if not p.startswith("seed=")) or
+           "the paper config" for r in loaded}
+    ways = list(dict.fromkeys(way.values()))
+    colours = {name: f"C{ways.index(w) % 10}" for name, w in way.items()}
     for row_axes, shape in zip(axes, shapes):
         for ax, (q, title) in zip(row_axes, [("q13", "(sigma11 - sigma33)/p"), ("eps_v", "eps_v [%] (dilation +)"),
                                              ("coordination", "Z (all particles)")]):
@@ -134,13 +141,15 @@ def chart(variants, grid, path):
             ax.set_title(f"{shape}: {title}", fontsize=10)
             ax.grid(alpha=0.3)
             ax.set_xlabel("compressive strain -eps11 [%]")
-        row_axes[0].legend(fontsize=7)
+        row_axes[2].legend(fontsize=6, loc="lower right")  # Z rises within 2% and stays: room below
     for ax, (key, title, scale) in zip(axes[-1], [("peak_strain", "strain at the peak [%]", 100),
                                                   ("peak_q13", "peak (sigma11 - sigma33)/p", 1),
                                                   ("eps_v_final", "eps_v at the last strain [%]", 100)]):
         for r in loaded:
+            # Hollow: an assembly away from the paper's e (the density control).
+            hollow = abs(float(r["e0"]) - 0.556) > 0.01
             ax.plot(float(r["Z0_no_rattlers"]), scale * float(r[key]), SHAPE_MARKERS.get(r["shape"], "x"),
-                    color=colours[r["variant"]], ms=8)
+                    color=colours[r["variant"]], ms=8, mfc="none" if hollow else colours[r["variant"]])
         for shape in shapes:
             ax.plot([], [], SHAPE_MARKERS.get(shape, "x"), color="k", label=shape)
         ax.set_xlabel("Z without rattlers after consolidation")
@@ -148,7 +157,7 @@ def chart(variants, grid, path):
         ax.grid(alpha=0.3)
     axes[-1][0].legend(fontsize=8)
     fig.suptitle("The preparation as a lever: assemblies near e = 0.556 made in different ways, "
-                 "loaded alike (oval behaviour, 1000 particles)")
+                 "loaded alike (oval behaviour, 1000 particles; hollow: e = 0.53)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
