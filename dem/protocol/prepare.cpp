@@ -548,6 +548,8 @@ PreparedAssembly Protocol::run_stopped() {
         fmt::format("compaction stopped at e = {:.4f} (correction {})", stop_void_ratio_, refinements_);
     Seizure seized = seize(sparse_, {io::PieceKind::seized, 1, refinements_}, label, last_compaction_strain_);
     const StateMeasures m = seized.state.measure();
+    logger_->info("correction {}: stopped {} at e = {:.4f}, Z = {:.3f}", refinements_, seized.how,
+                  m.void_ratio, m.coordination);
     seized_.push_back(Seized{std::move(seized.state), m.void_ratio, 1, refinements_, 0.0, false});
   }
   return finish(std::move(*best), target());
