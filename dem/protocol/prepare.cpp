@@ -62,7 +62,7 @@ Compaction compact_until_seized(Simulation& simulation, double rate, const Prepa
   // estimate grows while the cell is held.
   const double start_volume = state.start_volume;
   // A stop void ratio ends the compaction at a chosen density instead of at seizure: below its
-  // own jamming density a frictionless assembly never seizes (docs/methods/dem.md, "Preparation").
+  // own jamming density a frictionless assembly never seizes (docs/methods/dem.md, "The preparation study").
   const double stop_void_ratio = prepare.compaction_stop_void_ratio;
   const double solid_volume = stop_void_ratio > 0 ? simulation.solid_volume() : 0.0;
   const double strain_to_seize = std::max(expected_strain, 1e-6);
@@ -519,12 +519,6 @@ std::string Protocol::failure_hint(const Consolidated& best, double aim) const {
                      refinements_, config_.prepare.refinement_cycles, aim);
 }
 
-// The cycles run until one seizes at or below the target; the one nearest the target is
-// consolidated to p0. Consolidation compacts (flat ovoids by up to 0.005 at demo size), so when
-// the consolidated e misses the target, the compaction it measured moves the aim for the seized
-// e to target + compaction: the cycle nearest that aim is consolidated if it lies within half
-// the tolerance of it, else the cycle that steps across the aim is run again from its
-// predecessor with a weaker agitation, chosen to seize at the aim (refinement cycles).
 PreparedAssembly Protocol::run() {
   return stops_at_void_ratio() ? run_stopped() : run_cycles();
 }
@@ -535,6 +529,12 @@ PreparedAssembly Protocol::run() {
 // sparse state (at most refinement_cycles times, each kept as a refinement of cycle 1).
 PreparedAssembly Protocol::run_stopped() {
   stop_void_ratio_ = config_.prepare.compaction_stop_void_ratio;
+  const double sparse_void_ratio = sparse_.cell().volume() / sparse_.solid_volume() - 1.0;
+  require_input(
+      stop_void_ratio_ < sparse_void_ratio,
+      fmt::format("dem.prepare.compaction_stop_void_ratio = {:g} is not below the sparse start's e = "
+                  "{:.4f}: nothing would be compacted",
+                  stop_void_ratio_, sparse_void_ratio));
   run_cycle();
   std::optional<Consolidated> best;
   for (;;) {
@@ -555,6 +555,12 @@ PreparedAssembly Protocol::run_stopped() {
   return finish(std::move(*best), target());
 }
 
+// The cycles run until one seizes at or below the target; the one nearest the target is
+// consolidated to p0. Consolidation compacts (flat ovoids by up to 0.005 at demo size), so when
+// the consolidated e misses the target, the compaction it measured moves the aim for the seized
+// e to target + compaction: the cycle nearest that aim is consolidated if it lies within half
+// the tolerance of it, else the cycle that steps across the aim is run again from its
+// predecessor with a weaker agitation, chosen to seize at the aim (refinement cycles).
 PreparedAssembly Protocol::run_cycles() {
   const auto& pr = config_.prepare;
   std::optional<Consolidated> best;

@@ -182,6 +182,18 @@ TEST(Prepare, ACompactionStoppedAtAVoidRatioIsTheOneCycle) {
         << message;
     EXPECT_EQ(error.code(), ExitCode::convergence_failure);
   }
+
+  // A stop at or above the sparse start's e would compact nothing: refused, naming both.
+  config.prepare.compaction_stop_void_ratio = 5.0;
+  try {
+    (void)prepare(config);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(
+        std::string(error.what()).find("compaction_stop_void_ratio = 5 is not below the sparse start's e"),
+        std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(Prepare, TheCompactionDampsSpinWithItsOwnFactor) {
