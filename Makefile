@@ -4,6 +4,8 @@
 #   make test        install missing Debian packages, build, run every test but the long ones, check formatting
 #   make campaign CONFIG=workflows/configs/paper-spheres.toml OUT=runs/paper-spheres
 #                    any campaign (paths from this folder), resumed where it stopped
+#   make paper       the paper's study: four shapes at paper size, every stage, the paper's figures and a
+#                    generated comparison (runs/paper; REALISATIONS=N seeds per shape; hours: see README)
 #   make test-long   the long tests only (label `long`)
 #   make format      rewrite all C++ sources with clang-format
 #   make clean       remove the build folder
@@ -20,7 +22,7 @@ TEST_JOBS  ?= 2
 # Open MPI refuses to run as root unless told it may (containers, CI machines).
 MPI_ENV := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-.PHONY: all demo campaign test test-long format clean deps-test deps-demo configure build build-stages
+.PHONY: all demo campaign paper test test-long format clean deps-test deps-demo configure build build-stages
 
 all: build
 
@@ -51,6 +53,12 @@ OUT    ?= runs/campaign
 campaign: deps-demo
 	$(MAKE) build-stages
 	$(MPI_ENV) $(MAKE) -C workflows campaign CONFIG=$(abspath $(CONFIG)) OUT=$(abspath $(OUT)) BIN=$(abspath $(BUILD))
+
+# The paper's whole study as one campaign (workflows/paper.mk); resumes where it stopped.
+PAPER_OUT ?= runs/paper
+paper: deps-demo
+	$(MAKE) build-stages
+	$(MPI_ENV) $(MAKE) -C workflows paper BIN=$(abspath $(BUILD)) PAPER_OUT=$(abspath $(PAPER_OUT))
 
 test: deps-test
 	$(MAKE) build

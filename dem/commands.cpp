@@ -153,6 +153,12 @@ int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, co
                    "docs/methods/dem.md, rate convergence)",
                    config.load.inertial_number, protocol::quasi_static_inertial_number);
   }
+  require_input(!options.resume || !h5::File::open(input).has_attribute(protocol::relaxed_copy_attribute),
+                fmt::format("load --resume: '{}' is a relaxed copy of the loading's state "
+                            "(dem.equilibrium.fork_checkpoints), not a state the loading passed through: "
+                            "resume from load_resume.h5 in its folder, the loading's own state at the newest "
+                            "checkpoint",
+                            input));
   const std::string run_id = options.resume ? checkpoint.run_id : io::new_run_id(context.comm);
   const std::optional<io::InterruptedRelaxation> interrupted =
       options.resume ? io::read_interrupted_relaxation(input) : std::nullopt;

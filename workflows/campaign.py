@@ -11,6 +11,9 @@ usage:
                                        reads its own section (`--print-config`, the stage's own validator)
                                        and the [workflow] section is checked against the checkpoints
   campaign.py resources CONFIG         the SLURM resources of [workflow.resources] as JSON, validated
+  campaign.py realisation CONFIG K OUT writes OUT, the config of realisation K (1, 2, ...) of CONFIG:
+                                       CONFIG itself for K = 1, else with dem.seed raised by K - 1
+                                       (make paper REALISATIONS=N); rewritten only when it changes
 
 `stages` prints one word per built stage (its executable exists under BIN), then the optional
 command lines they offer (lbm-directions: one LBM run per flow direction); for every other stage
@@ -44,7 +47,9 @@ figures/, logs/, slurm/ and report.md.
 `load-input OUT` (OUT the DEM's folder) resumes from the newest checkpoint of this run that history.h5
 already covers (history.h5 is rewritten just after each checkpoint, so a kill
 between the two leaves the newer checkpoint uncovered) and that is newer than
-prepared.h5 and the config; otherwise it starts from prepared.h5, with --overwrite
+prepared.h5 and the config; where the checkpoints are relaxed copies
+(dem.equilibrium.fork_checkpoints), from load_resume.h5, the loading's own state at the
+newest of them; otherwise it starts from prepared.h5, with --overwrite
 when files of an earlier (stale) loading run are there.
 """
 import json
@@ -222,7 +227,19 @@ def usable_stages(bin_dir):
 def loading_run_files(out):
     """The files of a loading run in OUT (what `aniso-dem load` refuses to replace without --overwrite)."""
     names = os.listdir(out) if os.path.isdir(out) else []
-    return sorted(n for n in names if re.fullmatch(r"history\.(h5|csv)|load_(\d{3,}|interrupted)\.h5", n))
+    return sorted(n for n in names if re.fullmatch(r"history\.(h5|csv)|load_(\d{3,}|interrupted|resume)\.h5", n))
+
+
+def relaxed_copy(path):
+    """A checkpoint that is a relaxed copy of the loading's state (dem.equilibrium.fork_checkpoints):
+    not a state the loading passed through, so not a point to resume from."""
+    import h5py  # only here: the rest of campaign.py runs without it
+
+    try:
+        with h5py.File(path, "r") as f:
+            return "relaxed_copy_of_step" in f.attrs
+    except OSError:  # not HDF5: aniso-dem load names the file when it cannot read it
+        return False
 
 
 def load_input(out, config):
@@ -247,10 +264,15 @@ def load_input(out, config):
         if not os.path.exists(path):
             break
         written = os.path.getmtime(path)
-        if written < oldest_allowed or written > history_time:
+        if written < oldest_allowed or written > history_time or relaxed_copy(path):
             break
         newest = path
         index += 1
+    # Where the checkpoints are relaxed copies, the loading's own state at the newest of them:
+    # written just after the history, which always reaches it (aniso-dem load checks the steps).
+    resume = os.path.join(out, "load_resume.h5")
+    if os.path.exists(resume) and os.path.getmtime(resume) >= oldest_allowed:
+        newest = resume
     # A load stopped by SIGTERM (a SLURM time limit) wrote load_interrupted.h5 and then history.h5:
     # it is the resume point when newer than every numbered checkpoint.
     interrupted = os.path.join(out, "load_interrupted.h5")
@@ -265,6 +287,56 @@ def load_input(out, config):
     return ["--input", newest, "--resume"]
 
 
+DEM_HEADER = re.compile(r"^\s*\[\s*dem\s*\]\s*(#.*)?$")
+TABLE_HEADER = re.compile(r"^\s*\[")
+SEED_LINE = re.compile(r"^\s*seed\s*=")
+
+
+def with_seed(text, seed):
+    """TOML text with dem.seed set to `seed`, every other line (comments included) as it was."""
+    lines = text.splitlines(keepends=True)
+    header = next((k for k, line in enumerate(lines) if DEM_HEADER.match(line)), None)
+    if header is None:
+        return text + ("" if text.endswith("\n") or not text else "\n") + f"\n[dem]\nseed = {seed}\n"
+    end = next((k for k in range(header + 1, len(lines)) if TABLE_HEADER.match(lines[k])), len(lines))
+    for k in range(header + 1, end):
+        if SEED_LINE.match(lines[k]):
+            lines[k] = f"seed = {seed}\n"
+            return "".join(lines)
+    lines.insert(header + 1, f"seed = {seed}\n")
+    return "".join(lines)
+
+
+def write_realisation(config, index, out):
+    try:
+        k = int(index)
+    except ValueError:
+        k = 0
+    if k < 1:
+        fail(f"realisation {index!r}: expected an integer >= 1")
+    try:
+        with open(config) as f:
+            text = f.read()
+        source = tomllib.loads(text)
+    except OSError as error:
+        fail(f"{config}: cannot read the config: {error.strerror}", FILE_ERROR)
+    except tomllib.TOMLDecodeError as error:
+        fail(f"{config}: not valid TOML: {error}")
+    seed = source.get("dem", {}).get("seed", 1) + k - 1  # 1: aniso-dem's default seed
+    written = text if k == 1 else with_seed(text, seed)
+    if tomllib.loads(written).get("dem", {}).get("seed", 1) != seed:
+        fail(f"{config}: could not set dem.seed = {seed} for realisation {k}")
+    if os.path.exists(out):
+        with open(out) as f:
+            if f.read() == written:
+                return
+    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
+    with open(out + ".tmp", "w") as f:
+        f.write(written)
+    os.replace(out + ".tmp", out)
+    print(f"campaign: {out} is realisation {k} of {config} (dem.seed = {seed})", file=sys.stderr)
+
+
 def main(argv):
     if len(argv) in (4, 5) and argv[1] == "checkpoints":
         print(" ".join(checkpoint_stems(*argv[2:])))
@@ -274,6 +346,8 @@ def main(argv):
         check_config(argv[2], argv[3])
     elif len(argv) == 3 and argv[1] == "resources":
         print(json.dumps(sbatch_resources(argv[2])))
+    elif len(argv) == 5 and argv[1] == "realisation":
+        write_realisation(*argv[2:])
     elif len(argv) == 4 and argv[1] == "load-input":
         print(" ".join(load_input(argv[2], argv[3])))
     else:

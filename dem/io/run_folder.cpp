@@ -66,7 +66,7 @@ RunFolderLock::~RunFolderLock() {
 }
 
 std::vector<std::string> loading_run_files(const std::string& folder) {
-  static const std::regex pattern(R"(history\.(h5|csv)|load_(\d{3,}|interrupted)\.h5)");
+  static const std::regex pattern(R"(history\.(h5|csv)|load_(\d{3,}|interrupted|resume)\.h5)");
   return files_matching(folder, pattern);
 }
 
@@ -91,10 +91,12 @@ void clear_for_fresh_loading(const std::string& folder, bool overwrite, const st
       for (std::size_t k = 0; k < names.size() && k < 4; ++k)
         listed += (k ? ", " : "") + names[k];
       if (names.size() > 4) listed += fmt::format(" and {} more", names.size() - 4);
-      throw InputError(fmt::format("load: '{}' already holds a loading run ({}); a new loading there would "
-                                   "replace it. Continue it with --input <its load_NNN.h5> --resume, choose "
-                                   "another dem.output_dir, or pass --overwrite to replace it",
-                                   folder, listed));
+      throw InputError(
+          fmt::format("load: '{}' already holds a loading run ({}); a new loading there would "
+                      "replace it. Continue it with --input <its load_NNN.h5, or load_resume.h5 where the "
+                      "checkpoints are relaxed copies> --resume, choose "
+                      "another dem.output_dir, or pass --overwrite to replace it",
+                      folder, listed));
     }
     for (const std::string& name : names) {
       std::error_code same;

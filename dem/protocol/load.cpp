@@ -123,6 +123,10 @@ std::string load_checkpoint_path(const std::string& folder, std::size_t index) {
   return fmt::format("{}/load_{:03d}.h5", folder, index);
 }
 
+std::string load_resume_path(const std::string& folder) {
+  return folder + "/load_resume.h5";
+}
+
 void start_loading(Simulation& simulation, const DemConfig& config) {
   const auto& pc = config.particles;
   const double rate = strain_rate_for_inertial_number(config.load.inertial_number, pc.d50, pc.density,
@@ -374,6 +378,9 @@ bool LoadingRun::write_fork(std::size_t index, double strain, const StrainSchedu
     return false;
   }
   write_state(index, strain, copy);
+  // After the history, which therefore always reaches the resume point: a kill between the two
+  // leaves the previous checkpoint's state there, from which the history is truncated.
+  io::write_checkpoint(load_resume_path(output_dir_), simulation_, labels_, provenance_);
   return true;
 }
 
@@ -382,10 +389,15 @@ void LoadingRun::write_state(std::size_t index, double strain, const Simulation&
   // The log reports the ratios measured for the file: simulation.equilibrium() is stale
   // when equilibrium is not watched (no relaxation at checkpoints).
   const ScopedSection writing(output_, 0);
+  const auto relaxation = config_.equilibrium.at_checkpoints ? io::relaxation_record(last_relaxation_)
+                                                             : std::function<void(h5::File&)>{};
+  const bool copy = &state != &simulation_;
+  const std::int64_t loading_step = simulation_.step_count();
   const h5::Checkpoint checkpoint =
-      io::write_checkpoint(path, state, labels_, provenance_,
-                           config_.equilibrium.at_checkpoints ? io::relaxation_record(last_relaxation_)
-                                                              : std::function<void(h5::File&)>{});
+      io::write_checkpoint(path, state, labels_, provenance_, [&](h5::File& file) {
+        if (relaxation) relaxation(file);
+        if (copy) file.write_attribute<std::int64_t>(relaxed_copy_attribute, loading_step);
+      });
   if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
   logger_->info("checkpoint {} at strain {:.6g}: {} (p = {:.4g} Pa, servo error {:.2e}, unbalanced-force "
                 "ratio {:.2e}, kinetic/elastic {:.2e})",

@@ -52,4 +52,13 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
 /// Path of checkpoint number `index` in `folder`.
 std::string load_checkpoint_path(const std::string& folder, std::size_t index);
 
+/// Path of load_resume.h5 in `folder`: with dem.equilibrium.fork_checkpoints the checkpoints are
+/// relaxed copies, not states the loading passed through, so each checkpoint also rewrites the
+/// loading's own state there, the point `load --resume` continues from after a kill.
+std::string load_resume_path(const std::string& folder);
+
+/// The root attribute of a checkpoint that is a relaxed copy (fork_checkpoints): the loading's
+/// step it was copied at. `load --resume` refuses such a file and names load_resume.h5.
+inline constexpr const char* relaxed_copy_attribute = "relaxed_copy_of_step";
+
 } // namespace aniso::dem::protocol

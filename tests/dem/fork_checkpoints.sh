@@ -7,7 +7,10 @@
 # - SIGTERM while a copy relaxes: exit 143, load_interrupted.h5 holds the loading's state (purpose
 #   checkpoint_fork), the checkpoint before it intact; --resume on 2 ranks gives the bits of the
 #   uninterrupted run; a resume without fork_checkpoints is refused (exit 2, naming the key);
-# - a copy out of its step budget: exit 5 naming the kept loading state, resumed to the same bits.
+# - a copy out of its step budget: exit 5 naming the kept loading state, resumed to the same bits;
+# - load_resume.h5 holds the loading's own state at the newest checkpoint (that of the run without
+#   relaxations, to the bit); a run killed after checkpoint 0 resumes from it to the same bits,
+#   and --resume from a copy is refused (exit 2, naming load_resume.h5).
 #
 # usage: fork_checkpoints.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -24,6 +27,9 @@ fork=("${settings[@]}" --set dem.equilibrium.at_checkpoints=true --set dem.equil
 "$dem" load "${fork[@]}" --set dem.output_dir=whole --input prepared.h5 --log-level debug >whole.log 2>&1
 
 expect_same_history "forked checkpoints against none relaxed" plain/history.h5 whole/history.h5
+expect_same_state "load_resume.h5 against the unrelaxed run's last checkpoint" plain/load_001.h5 whole/load_resume.h5
+expect_exit 2 resume_copy "is a relaxed copy of the loading's state .* resume from load_resume.h5" \
+  "$dem" load "${fork[@]}" --set dem.output_dir=whole --input whole/load_000.h5 --resume
 for k in 000 001; do
   "$dem" relax "${settings[@]}" --input plain/load_$k.h5 --output relaxed_$k.h5 --log-level warn
   expect_same_state "checkpoint $k: the fork against relax of the unrelaxed run's" relaxed_$k.h5 whole/load_$k.h5
@@ -47,6 +53,11 @@ expect_exit 2 resume_unforked "fork_checkpoints = true; resume it with the same 
   "$dem" load "${settings[@]}" --set dem.equilibrium.at_checkpoints=true --set dem.output_dir=cut \
   --input cut/load_interrupted.h5 --resume
 echo "stopped at step $stop_at, $((stop_at - from)) of the $steps steps relaxing checkpoint 1's copy"
+# As if killed (SIGKILL) then: no load_interrupted.h5, the resume point is load_resume.h5 of checkpoint 0.
+cp -r cut killed && rm killed/load_interrupted.h5
+"$dem" load "${fork[@]}" --set dem.output_dir=killed --input killed/load_resume.h5 --resume --log-level warn
+expect_same_state "killed after checkpoint 0, resumed from load_resume.h5" whole/load_001.h5 killed/load_001.h5
+expect_same_history "killed after checkpoint 0, resumed from load_resume.h5" whole/history.h5 killed/history.h5
 mpiexec --oversubscribe -n 2 "$dem" load "${fork[@]}" --set dem.output_dir=cut --input cut/load_interrupted.h5 \
   --resume --log-level warn
 [ "$(md5sum <cut/load_000.h5)" = "$first" ] || { echo "FAIL: load_000.h5 changed"; status=1; }

@@ -5,6 +5,7 @@
 #
 # usage: run_campaign.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -euo pipefail
+source "$(dirname "$0")/../tools/cli_lib.sh"
 source_dir=$1 build_dir=$2 work=$3
 rm -rf "$work"
 mkdir -p "$work"
@@ -66,15 +67,8 @@ h5diff "$run/dem/history.h5" "$resumed/history.h5" /history /history || fail "re
 # continue the load from its newest checkpoint, leave every finished file
 # untouched and end with exactly the uninterrupted run's results.
 killed="$work/killed"
-setsid make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$killed" BIN="$build_dir" \
-  >"$work/killed.log" 2>&1 &
-campaign=$!
-until [ -e "$killed/dem/history.h5" ]; do
-  kill -0 "$campaign" 2>/dev/null || fail "the campaign ended before it could be interrupted: $(tail -3 "$work/killed.log")"
-  sleep 0.02
-done
-kill -KILL -- "-$campaign"
-wait "$campaign" 2>/dev/null || true
+kill_when_written "$killed/dem/history.h5" "$work/killed.log" \
+  make -s -C "$source_dir/workflows" campaign CONFIG=configs/e2e.toml OUT="$killed" BIN="$build_dir"
 [ ! -e "$killed/dem/load.done" ] || fail "the campaign finished before it was killed; nothing was interrupted"
 finished=$(cd "$killed" && ls dem/prepared.h5 dem/load_*.h5)
 stamps() { (cd "$killed" && stat -c '%n %Y %i' $finished); }

@@ -86,3 +86,19 @@ expect_same_history() {
   h5diff "$a" "$b" /history /history >"$b.diff" 2>&1 ||
     { echo "FAIL: $label: the history $b differs from $a:"; head -5 "$b.diff"; status=1; }
 }
+
+# kill_when_written FILE LOG COMMAND...: starts COMMAND in a process group of its own (output to
+# LOG), waits until FILE exists and kills the whole group with SIGKILL, as a lost node would.
+# Fails, naming LOG's last lines, when COMMAND ends before FILE appears.
+kill_when_written() {
+  local file=$1 log=$2
+  shift 2
+  setsid "$@" >"$log" 2>&1 &
+  local group=$!
+  until [ -e "$file" ]; do
+    kill -0 "$group" 2>/dev/null || { echo "FAIL: '$*' ended before $file was written: $(tail -3 "$log")" >&2; exit 1; }
+    sleep 0.02
+  done
+  kill -KILL -- "-$group"
+  wait "$group" 2>/dev/null || true
+}

@@ -13,7 +13,8 @@ is replaced by RUN before comparing. Otherwise:
   columns: they identify the input or time the run.
 - CSV files: cell by cell, without the NOT_RESULTS columns.
 - Every other file: byte for byte (PNG figures included).
-Job logs (slurm/), the stages' logs (logs/), the load.done stamp and hidden files are not results.
+Job logs (slurm/), the stages' logs (logs/), the load.done stamp and hidden files are not results,
+at any depth (make paper's folder holds one run folder per shape and realisation).
 """
 import csv
 import os
@@ -99,7 +100,8 @@ def main(root_a, root_b):
     root_a, root_b = os.path.abspath(root_a), os.path.abspath(root_b)
     compared, differing = 0, 0
     for folder, subfolders, files in os.walk(root_a):
-        subfolders[:] = sorted(d for d in subfolders if not (folder == root_a and d in ("slurm", "logs")))
+        # At any depth: make paper's root holds one run folder per shape and realisation.
+        subfolders[:] = sorted(d for d in subfolders if d not in ("slurm", "logs"))
         for name in sorted(files):
             if name.startswith(".") or name == "load.done":
                 continue

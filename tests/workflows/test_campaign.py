@@ -97,6 +97,95 @@ class LoadInput(unittest.TestCase):
         self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5", "--overwrite"])
 
 
+    def relaxed_copy(self, name, when):
+        """A checkpoint written as a relaxed copy (dem.equilibrium.fork_checkpoints)."""
+        import h5py
+
+        with h5py.File(f"{self.out}/{name}", "w") as f:
+            f.attrs["relaxed_copy_of_step"] = 1000
+        os.utime(f"{self.out}/{name}", (when, when))
+
+    def test_relaxed_copies_resume_from_the_loading_state(self):
+        self.relaxed_copy("load_000.h5", 1200)
+        touch(f"{self.out}/history.h5", 1201)
+        touch(f"{self.out}/load_resume.h5", 1202)  # written just after the history
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/load_resume.h5", "--resume"])
+
+    def test_a_relaxed_copy_is_never_the_resume_point(self):
+        self.relaxed_copy("load_000.h5", 1200)  # killed before load_resume.h5 was written
+        touch(f"{self.out}/history.h5", 1201)
+        arguments, log = self.load_input()
+        self.assertEqual(arguments, ["--input", f"{self.out}/prepared.h5", "--overwrite"])
+        self.assertIn("replacing history.h5, load_000.h5", log)
+
+    def test_a_sigterm_after_the_loading_state_resumes_from_its_file(self):
+        self.relaxed_copy("load_000.h5", 1200)
+        touch(f"{self.out}/history.h5", 1201)
+        touch(f"{self.out}/load_resume.h5", 1202)
+        touch(f"{self.out}/load_interrupted.h5", 1300)  # SIGTERM in checkpoint 1's copy
+        touch(f"{self.out}/history.h5", 1301)
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/load_interrupted.h5", "--resume"])
+
+    def test_a_loading_state_older_than_the_config_is_not_resumed(self):
+        touch(f"{self.out}/load_resume.h5", 900)
+        touch(f"{self.out}/history.h5", 950)
+        self.assertEqual(self.load_input()[0], ["--input", f"{self.out}/prepared.h5", "--overwrite"])
+
+
+class Realisation(unittest.TestCase):
+    """campaign.py realisation: make paper's config of realisation K (REALISATIONS=N)."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.source = os.path.join(SOURCE, "workflows", "configs", "paper-spheres.toml")
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def realise(self, source, k):
+        out = os.path.join(self.dir.name, f"r{k}.toml")
+        return campaign("realisation", source, str(k), out), out
+
+    def test_the_first_is_the_config_itself_and_later_ones_raise_the_seed(self):
+        import tomllib
+
+        done, first = self.realise(self.source, 1)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(first) as f, open(self.source) as g:
+            self.assertEqual(f.read(), g.read())
+        done, third = self.realise(self.source, 3)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(third, "rb") as f, open(self.source, "rb") as g:
+            realised, shipped = tomllib.load(f), tomllib.load(g)
+        self.assertEqual(realised["dem"]["seed"], shipped["dem"]["seed"] + 2)
+        realised["dem"]["seed"] = shipped["dem"]["seed"]
+        self.assertEqual(realised, shipped)
+
+    def test_a_config_without_a_seed_gets_one(self):
+        source = os.path.join(self.dir.name, "noseed.toml")
+        with open(source, "w") as f:
+            f.write("[dem.particles]\ncount = 5\n")
+        done, out = self.realise(source, 2)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        import tomllib
+
+        with open(out, "rb") as f:
+            self.assertEqual(tomllib.load(f)["dem"], {"seed": 2, "particles": {"count": 5}})
+
+    def test_an_unchanged_config_is_not_rewritten(self):
+        _, out = self.realise(self.source, 2)
+        os.utime(out, (1000, 1000))
+        done, _ = self.realise(self.source, 2)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(os.path.getmtime(out), 1000)
+
+    def test_a_bad_index_is_refused(self):
+        done, out = self.realise(self.source, 0)
+        self.assertEqual(done.returncode, 2)
+        self.assertIn("realisation '0': expected an integer >= 1", done.stderr)
+        self.assertFalse(os.path.exists(out))
+
+
 class Stages(unittest.TestCase):
     def test_only_built_stages_are_used(self):
         with tempfile.TemporaryDirectory() as folder:
@@ -351,6 +440,45 @@ class SubmitDryRun(unittest.TestCase):
             self.assertTrue(all("#SBATCH --partition=batch" in line for line in lines))
             self.assertEqual(plan["series"].count("<"), len(names) - 2, "the series waits for every analysis")
             self.assertEqual(plan["report"].count("<"), len(names) - 1, "the report waits for every step")
+
+
+    def test_paper_plan_runs_every_shape_and_realisation_then_the_figures(self):
+        with tempfile.TemporaryDirectory() as folder:
+            bin_dir = os.path.join(folder, "bin")
+            os.mkdir(bin_dir)
+            fake_bin(bin_dir, doubles=["fabric", "probe", "voxel", "lbm"])
+            paper = os.path.join(folder, "paper")
+            tiny = os.path.join(SOURCE, "tests", "e2e", "paper")
+            result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--paper",
+                                     "--out", paper, "--bin", bin_dir, "--paper-configs", tiny,
+                                     "--paper-shapes", "spheres ovoids-0.5", "--realisations", "2", "--dry-run"],
+                                    capture_output=True, text=True)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            scripts = [line.split()[-1] for line in result.stdout.splitlines()]
+            runs = [f"{shape}/r{k}" for shape in ("spheres", "ovoids-0.5") for k in (1, 2)]
+            self.assertEqual([s for s in scripts if s.endswith("/prepare.sh")],
+                             [os.path.join(paper, run, "slurm", "jobs", "prepare.sh") for run in runs])
+            self.assertEqual(scripts[-1], os.path.join(paper, "slurm", "jobs", "paper-figures.sh"))
+            self.assertIn("--dependency=afterok:" + ":".join(["<report>"] * 4), result.stdout.splitlines()[-1])
+            with open(scripts[-1]) as f:
+                figures = f.read()
+            for variable in (f"PAPER_OUT={paper}", "REALISATIONS=2", "'PAPER_SHAPES=spheres ovoids-0.5'",
+                             "paper-figures"):
+                self.assertIn(variable, figures)
+            import tomllib
+
+            with open(os.path.join(paper, "configs", "ovoids-0.5-r2.toml"), "rb") as f:
+                self.assertEqual(tomllib.load(f)["dem"]["seed"], 4)  # the tiny config's seed 3, plus one
+            with open(os.path.join(paper, "ovoids-0.5", "r2", "slurm", "jobs", "load.sh")) as f:
+                self.assertIn(f"CONFIG={paper}/configs/ovoids-0.5-r2.toml", f.read())
+
+    def test_paper_submission_refuses_a_shape_without_a_config(self):
+        result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--paper", "--out",
+                                 "/nonexistent/paper", "--bin", BUILD, "--paper-shapes", "cubes", "--dry-run"],
+                                capture_output=True, text=True)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("--paper-shapes names 'cubes'", result.stderr)
+        self.assertEqual(result.stdout, "")
 
 
 if __name__ == "__main__":

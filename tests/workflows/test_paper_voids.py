@@ -77,10 +77,10 @@ class PaperVoids(unittest.TestCase):
         self.tmp = tempfile.TemporaryDirectory()
         self.run_folder = os.path.join(self.tmp.name, "run")
         self.out = os.path.join(self.tmp.name, "out")
-        os.makedirs(os.path.join(self.run_folder, "voxel"))
-        os.makedirs(os.path.join(self.run_folder, "lbm"))
+        for stage in ("dem", "voxel", "lbm"):
+            os.makedirs(os.path.join(self.run_folder, stage))
         for stem, strain, scale in (("load_000", -2e-5, 1.0), ("load_001", -0.3, 1.2), ("load_002", -0.6, 1.1)):
-            write_checkpoint(os.path.join(self.run_folder, f"{stem}.h5"), strain)
+            write_checkpoint(os.path.join(self.run_folder, "dem", f"{stem}.h5"), strain)
             write_voids(os.path.join(self.run_folder, "voxel", f"voids_{stem}.h5"), scale)
         self.K = {"load_000": np.diag([1.0, 2.0, 3.0]) * 1e-11, "load_002": np.diag([2.0, 2.0, 1.0]) * 1e-11}
         for stem, K in self.K.items():
@@ -133,7 +133,7 @@ class PaperVoids(unittest.TestCase):
         self.assertNotIn("Pearson", result.stdout)
 
     def test_a_missing_checkpoint_is_named(self):
-        os.remove(os.path.join(self.run_folder, "load_001.h5"))
+        os.remove(os.path.join(self.run_folder, "dem", "load_001.h5"))
         result = run(os.path.join(PLOTS, "paper_voids_csv.py"), self.run_folder, self.out)
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("load_001.h5 is missing", result.stderr)
@@ -143,7 +143,7 @@ class PaperVoids(unittest.TestCase):
         os.makedirs(os.path.join(empty, "voxel"))
         result = run(os.path.join(PLOTS, "paper_voids_csv.py"), empty, self.out)
         self.assertNotEqual(result.returncode, 0)
-        self.assertIn("voids_and_flow.sh", result.stderr)
+        self.assertIn("run the campaign's voxel stage first", result.stderr)
 
 
 class PermeabilityChecks(unittest.TestCase):

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""The committed CSVs of a paper-size shape's void and permeability stages.
+"""The CSVs of a campaign run's void and permeability stages (the paper figures' input).
 
-Reads runs/paper-SHAPE/voxel/voids_load_NNN.h5 (aniso-voxel), runs/paper-SHAPE/lbm/permeability_image_
-load_NNN.h5 (aniso-lbm, where run) and the checkpoints runs/paper-SHAPE/load_NNN.h5 they came from (for
-the strain), and writes into OUTPUT_FOLDER (docs/paper-size/SHAPE):
+Reads RUN_FOLDER/voxel/voids_load_NNN.h5 (aniso-voxel), RUN_FOLDER/lbm/permeability_image_load_NNN.h5
+(aniso-lbm, where run) and the checkpoints RUN_FOLDER/dem/load_NNN.h5 they came from (for the strain),
+the campaign's run folder (docs/user-guide.md, "The run folder"), and writes into OUTPUT_FOLDER:
 
   voids.csv        one row per checkpoint: strain, porosity, the median void size (ball, eq. (fr)), the
                    median free paths l_i (spar, eq. (fli)) and radial breadths r_i (disk, eq. (fri)) in
@@ -19,6 +19,7 @@ usage: paper_voids_csv.py RUN_FOLDER OUTPUT_FOLDER
 import csv
 import glob
 import os
+import re
 import sys
 
 import h5py
@@ -30,7 +31,7 @@ CURVES = ["ball"] + [f"{kind}_x{a}" for kind in ("spar", "disk") for a in AXES]
 
 def checkpoint_strain(run, stem):
     """Engineering strain eps_11 of the checkpoint (cell length over its reference length, minus 1)."""
-    path = os.path.join(run, f"{stem}.h5")
+    path = os.path.join(run, "dem", f"{stem}.h5")
     if not os.path.exists(path):
         sys.exit(f"paper_voids_csv.py: {path} is missing: the strain of {stem} comes from its checkpoint")
     with h5py.File(path, "r") as f:
@@ -67,8 +68,11 @@ def void_rows(run):
 
 def permeability_rows(run, strains):
     rows = []
+    # Only the collected results: the per-direction files of a job array lie beside them.
     for path in sorted(glob.glob(os.path.join(run, "lbm", "permeability_image_load_*.h5"))):
         stem = stem_of(path, "permeability_image_")
+        if not re.fullmatch(r"load_\d+", stem):
+            continue
         with h5py.File(path, "r") as f:
             g = f["permeability"]
             K = g["K"][()]
@@ -105,7 +109,7 @@ def main():
     run, out = sys.argv[1:]
     rows, curves = void_rows(run)
     if not rows:
-        sys.exit(f"paper_voids_csv.py: no {run}/voxel/voids_load_*.h5: run workflows/voids_and_flow.sh first")
+        sys.exit(f"paper_voids_csv.py: no {run}/voxel/voids_load_*.h5: run the campaign's voxel stage first")
     os.makedirs(out, exist_ok=True)
     write_csv(os.path.join(out, "voids.csv"), rows)
     strains = {r["checkpoint"]: r["strain_11"] for r in rows}

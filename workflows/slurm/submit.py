@@ -3,6 +3,13 @@
 
 usage: submit.py --config FILE.toml --out RUN_DIR --bin BUILD_DIR [--ranks N]
                  [--launcher 'srun --mpi=pmix'] [--sbatch-arg=ARG ...] [--dry-run] [--wait]
+       submit.py --paper --out PAPER_DIR --bin BUILD_DIR [--realisations N] [--paper-configs DIR]
+                 [--paper-shapes 'spheres ovoids-0.5'] [other options as above]
+
+--paper submits `make paper` (workflows/paper.mk): for every shape and realisation the
+campaign below into PAPER_DIR/<shape>/r<k>, with the config campaign.py realisation writes
+into PAPER_DIR/configs/, then one serial job, after all their report jobs, that draws the
+paper's figures and writes PAPER_DIR/comparison.md (`make paper-figures`).
 
 The jobs are the steps of workflows/Makefile (its `slurm-plan` target lists
 them): prepare -> load -> per checkpoint {the seven probe forks (reference and
@@ -173,6 +180,7 @@ def submit(steps, args, variables, resources):
         if args.dry_run:
             print(shlex.join(command))
             step.job_id = f"<{step.name}>"
+            submitted.append(step)  # a later step's dependency names it (make paper's figures job)
             continue
         env = dict(os.environ, ANISO_SLURM_LAUNCHER=args.launcher)
         result = subprocess.run(command, capture_output=True, text=True, env=env)
@@ -243,9 +251,74 @@ def wait(steps, log_dir):
     return ok
 
 
+def submit_campaign(args):
+    """Submits one campaign (args.config into args.out); returns its submitted steps."""
+    if not os.path.isfile(args.config):
+        fail(f"config file {args.config} not found")
+    facts, resources = campaign_facts(args)
+    variables = make_variables(args, facts)
+    return submit(read_plan(variables), args, variables, resources)
+
+
+def paper_runs(args):
+    """[(config, run folder)] of make paper: PAPER_DIR/<shape>/r<k>, its config written now."""
+    runs = []
+    for shape in args.paper_shapes.split():
+        source = os.path.join(args.paper_configs, f"paper-{shape}.toml")
+        if not os.path.isfile(source):
+            fail(f"--paper-shapes names '{shape}', but {source} does not exist")
+        for k in range(1, args.realisations + 1):
+            config = os.path.join(args.out, "configs", f"{shape}-r{k}.toml")
+            result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "campaign.py"), "realisation", source,
+                                     str(k), config])
+            if result.returncode != 0:
+                fail(f"campaign.py realisation {source} {k} failed")
+            runs.append((config, os.path.join(args.out, shape, f"r{k}")))
+    return runs
+
+
+def submit_paper(args):
+    """Every run's campaign, then the figures after all of them (one serial job)."""
+    paper_out = args.out
+    submitted, reports = [], []
+    for config, out in paper_runs(args):
+        args.config, args.out = config, out
+        steps = submit_campaign(args)
+        submitted += steps
+        reports += [s for s in steps if s.name == "report"]
+    args.out = paper_out
+    variables = [f"PAPER_OUT={paper_out}", f"BIN={args.bin}", f"PAPER_CONFIGS={args.paper_configs}",
+                 f"PAPER_SHAPES={args.paper_shapes}", f"REALISATIONS={args.realisations}"]
+    figures = Step(f"paper-figures 1 serial {','.join(s.name for s in reports) or '-'} "
+                   f"{os.path.join(paper_out, 'comparison.md')}")
+    figures.kind = "report"  # its resources: [workflow.resources.report] does not apply (no config here)
+    if not reports and up_to_date(figures.targets, variables):
+        say("paper-figures: up to date, not submitted")
+        return submitted
+    log_dir = os.path.join(paper_out, "slurm")
+    # No --upstream files: the figures' make rule itself needs every run's report.md.
+    script = job_script(figures, [], args, variables + ["paper-figures"], {}, log_dir)
+    command = sbatch_command(figures, reports, script)
+    if args.dry_run:
+        print(shlex.join(command))
+        return submitted
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        fail(f"sbatch refused step paper-figures: {result.stderr.strip()}")
+    figures.job_id = result.stdout.strip().split(";")[0]
+    say(f"paper-figures: job {figures.job_id}" + (f", after {len(reports)} report jobs" if reports else ""))
+    return submitted + [figures]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--config", required=True, help="campaign configuration (TOML)")
+    parser.add_argument("--config", help="campaign configuration (TOML); not with --paper")
+    parser.add_argument("--paper", action="store_true", help="submit make paper's campaigns and figures")
+    parser.add_argument("--realisations", type=int, default=1, help="with --paper: seeds per shape [1]")
+    parser.add_argument("--paper-configs", default=os.path.join(WORKFLOWS, "configs"),
+                        help="with --paper: the folder of paper-<shape>.toml [workflows/configs]")
+    parser.add_argument("--paper-shapes", default="spheres ovoids-0.8 ovoids-0.625 ovoids-0.5",
+                        help="with --paper: the shapes [all four]")
     parser.add_argument("--out", required=True, help="run folder (shared by all nodes)")
     parser.add_argument("--bin", required=True, help="build folder holding <stage>/aniso-<stage>")
     parser.add_argument("--ranks", type=int, default=1, help="MPI ranks of each MPI step [1]")
@@ -256,13 +329,14 @@ def main():
     args = parser.parse_args()
     if args.ranks < 1:
         fail("--ranks must be at least 1")
-    for name in ("config", "out", "bin"):
-        setattr(args, name, os.path.abspath(getattr(args, name)))
-    if not os.path.isfile(args.config):
-        fail(f"config file {args.config} not found")
-    facts, resources = campaign_facts(args)
-    variables = make_variables(args, facts)
-    steps = submit(read_plan(variables), args, variables, resources)
+    if args.paper == (args.config is not None):
+        fail("give either --config (one campaign) or --paper (the paper's study)")
+    if args.realisations < 1:
+        fail("--realisations must be at least 1")
+    for name in ("config", "out", "bin", "paper_configs"):
+        if getattr(args, name) is not None:
+            setattr(args, name, os.path.abspath(getattr(args, name)))
+    steps = submit_paper(args) if args.paper else submit_campaign(args)
     if args.dry_run:
         return
     if not steps:

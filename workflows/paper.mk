@@ -1,0 +1,58 @@
+# The paper's whole study as one campaign (included by workflows/Makefile):
+#
+#   make -C workflows paper BIN=<build dir> [PAPER_OUT=../runs/paper] [REALISATIONS=N]
+#
+# Every shape of PAPER_SHAPES runs the campaign of its config PAPER_CONFIGS/paper-<shape>.toml
+# (prepare, load with static checkpoints, fabric, probes, voxels, permeability: the `campaign`
+# target) into PAPER_OUT/<shape>/r<k>, one folder per realisation k = 1..REALISATIONS
+# (realisation k runs the config with dem.seed raised by k - 1; campaign.py realisation). Then
+# plots/paper_report.py draws every paper figure from those folders into PAPER_OUT/figures and
+# writes PAPER_OUT/comparison.md with the numbers. Each campaign resumes where it stopped, so
+# rerunning after a kill redoes only what is missing; make -j2 runs two stages at a time.
+
+PAPER_OUT     ?= ../runs/paper
+PAPER_SHAPES  ?= spheres ovoids-0.8 ovoids-0.625 ovoids-0.5
+PAPER_CONFIGS ?= configs
+REALISATIONS  ?= 1
+
+paper_goals := paper paper-runs paper-figures
+paper_realisations := $(shell seq 1 $(REALISATIONS) 2>/dev/null)
+ifneq ($(filter $(paper_goals),$(MAKECMDGOALS)),)
+ifeq ($(strip $(paper_realisations)),)
+$(error REALISATIONS = '$(REALISATIONS)': expected an integer >= 1)
+endif
+$(foreach s,$(PAPER_SHAPES),$(if $(wildcard $(PAPER_CONFIGS)/paper-$(s).toml),,\
+  $(error PAPER_SHAPES names '$(s)', but $(PAPER_CONFIGS)/paper-$(s).toml does not exist)))
+endif
+
+# Runs are <shape>/r<k>; their make names <shape>-r<k>; their labels the shape alone when there
+# is one realisation (paper_report.py writes 'ovoids-0.5' as 'alpha = 0.5').
+paper_runs    := $(foreach s,$(PAPER_SHAPES),$(foreach k,$(paper_realisations),$(s)/r$(k)))
+paper_name     = $(subst /,-,$(1))
+paper_config   = $(PAPER_OUT)/configs/$(call paper_name,$(1)).toml
+paper_label    = $(if $(filter 1,$(REALISATIONS)),$(firstword $(subst /, ,$(1))),$(call paper_name,$(1)))
+PAPER_REPORT  := $(PAPER_OUT)/comparison.md
+
+define paper_run_rules
+$(call paper_config,$(1)): $(PAPER_CONFIGS)/paper-$(firstword $(subst /, ,$(1))).toml
+	$(PYTHON) campaign.py realisation $$< $(patsubst r%,%,$(lastword $(subst /, ,$(1)))) $$@
+
+paper-run-$(call paper_name,$(1)): $(call paper_config,$(1))
+	$(MAKE) campaign CONFIG=$(abspath $(call paper_config,$(1))) OUT=$(abspath $(PAPER_OUT)/$(1))
+endef
+$(foreach r,$(paper_runs),$(eval $(call paper_run_rules,$(r))))
+
+.PHONY: $(paper_goals) $(foreach r,$(paper_runs),paper-run-$(call paper_name,$(r)))
+
+paper-runs: $(foreach r,$(paper_runs),paper-run-$(call paper_name,$(r)))
+
+# The figures wait for every run: a second make, so that -j cannot start them early.
+paper: paper-runs
+	$(MAKE) paper-figures
+
+$(PAPER_REPORT): $(foreach r,$(paper_runs),$(PAPER_OUT)/$(r)/report.md) $(wildcard plots/paper_*.py) \
+                 plots/shapes_stress_strain.py
+	$(PYTHON) plots/paper_report.py $(PAPER_OUT) \
+	  $(foreach r,$(paper_runs),$(call paper_label,$(r))=$(abspath $(PAPER_OUT)/$(r)))
+
+paper-figures: $(PAPER_REPORT)
