@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""workflows/plots/paper_signatures.py on a synthetic loading history whose signatures are known:
+"""workflows/plots/paper_signatures.py on a synthetic loading history whose signatures are known,
+and paper_spread.py on two realisations of one shape (that history scaled by 1 and 5/6):
 (sigma11 - sigma33)/p rises to 1.2 at 4%, holds to 6% and falls linearly to 0.9 at 60%; eps_v
 falls to -0.5% at 2% and then rises linearly to +6.8% at 60%; the cell ends at x3 = 2.67 times
 its width with eps11 = -0.60, so x1/x3 = 1.5 * 0.4 / 2.67 from an initial L1/L3 of 1.5. A
@@ -18,6 +19,7 @@ import numpy as np
 
 SOURCE = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 SCRIPT = os.path.join(SOURCE, "workflows", "plots", "paper_signatures.py")
+SPREAD = os.path.join(SOURCE, "workflows", "plots", "paper_spread.py")
 PYTHON = "/usr/bin/python3"
 P = 1.0e5
 
@@ -30,9 +32,9 @@ def eps_v_at(s):
     return np.interp(s, [0.0, 0.02, 0.60], [0.0, -0.005, 0.068])
 
 
-def write_history(path):
+def write_history(path, scale=1.0):
     strain = np.arange(0, 6001) * 1e-4
-    ratio, eps_v = ratio_at(strain), eps_v_at(strain)
+    ratio, eps_v = scale * ratio_at(strain), scale * eps_v_at(strain)
     # sigma33 = -p (1 - ratio/3) - ..., chosen so that (s33 - s11)/p = ratio with p fixed.
     s11 = -P * (1 + 2 * ratio / 3)
     s33 = -P * (1 - ratio / 3)
@@ -91,6 +93,30 @@ class PaperSignatures(unittest.TestCase):
         done = self.run_script(f"x={self.history}@tall")
         self.assertNotEqual(done.returncode, 0)
         self.assertIn("the initial L1/L3 'tall' is not a number", done.stderr)
+
+
+class PaperSpread(unittest.TestCase):
+    def test_two_realisations_give_their_mean_and_spread(self):
+        work = tempfile.mkdtemp()
+        paths = [os.path.join(work, f"h{k}.csv") for k in (1, 2)]
+        write_history(paths[0], 1.0)
+        write_history(paths[1], 5.0 / 6.0)  # peak 1.0
+        prefix = os.path.join(work, "spread")
+        done = subprocess.run([PYTHON, SPREAD, prefix, f"spheres (realisation 1)={paths[0]}@1.5",
+                               f"spheres (realisation 2)={paths[1]}@1.5", f"other={paths[0]}"],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        # Peaks 1.2 and 1.0: mean 1.1, sample standard deviation 0.2 / sqrt(2).
+        self.assertIn("| spheres | 2 | 1.100 +- 0.141 (1.000 - 1.200) | 4.25% +- 0.00% (4.25% - 4.25%) |",
+                      done.stdout)
+        self.assertIn("| other | 1 | 1.200 | 4.25% |", done.stdout)
+        self.assertGreater(os.path.getsize(prefix + ".png"), 10000)
+        with open(prefix + ".csv") as f:
+            rows = list(csv.DictReader(f))
+        at_5 = next(r for r in rows if abs(float(r["strain"]) - 0.05) < 1e-9)
+        self.assertAlmostEqual(float(at_5["spheres: ratio mean"]), 1.2 * (1 + 5 / 6) / 2, delta=1e-9)
+        self.assertAlmostEqual(float(at_5["spheres: ratio std"]), 1.2 * (1 / 6) / np.sqrt(2), delta=1e-9)
+        self.assertAlmostEqual(float(at_5["other: ratio std"]), 0.0, delta=0)
 
 
 if __name__ == "__main__":

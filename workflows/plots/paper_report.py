@@ -6,6 +6,7 @@ OUT/results/<slug>/ (paper_voids_csv.py); then every paper figure family is draw
 by its own script, and OUT/comparison.md gathers the figures with the numbers the scripts print:
 
   signatures   paper_signatures.py   peak, softening, large-strain ratio, dilation, the cell at 60%
+  spread       paper_spread.py       with several realisations of a shape: their mean and spread
   fig3         paper_fig3.py         Fig. 3 (a-d); shapes_stress_strain.py: e and particle alignment
   fabric       paper_fabric.py       Figs. 4-7 and the DEM-side void measures (fabric series)
   table2       paper_table2.py       Table 2: fabric-stress correlations averaged over the shapes
@@ -85,6 +86,9 @@ class Report:
         table = script("paper_signatures.py", "--csv", os.path.join(self.figures, "signatures.csv"), *with_aspect)
         self.section("The paper's stress-strain signatures (section 4; the Digitized figure's text)", [], table,
                      "paper_signatures.py")
+        if len({re.sub(r" \(realisation \d+\)$", "", label) for label, _ in self.runs}) < len(self.runs):
+            table = script("paper_spread.py", os.path.join(self.figures, "spread"), *with_aspect)
+            self.section("The spread between realisations", ["spread.png"], table, "paper_spread.py")
         script("paper_fig3.py", os.path.join(self.figures, "fig3.png"), *histories)
         script("shapes_stress_strain.py", os.path.join(self.figures, "shapes"), *histories)
         self.section("Fig. 3: stress ratios, volume change and pi-plane paths", ["fig3.png", "shapes_stress_strain.png"], "",
