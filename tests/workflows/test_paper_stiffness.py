@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """workflows/plots/paper_stiffness.py on synthetic probe and fabric CSVs whose numbers are known:
 C11 - C33 = 4.1 K_C (H11 - H33)/(tr H/3) at every strain gives the ratio 4.10 and c1 = 1.000; a
-probe in probes_unchecked/ is drawn but left out of every number; MAX_STRAIN drops the later
+probe in probes_unchecked/, or kept with checks_passed = 0, is drawn but left out of every number; MAX_STRAIN drops the later
 checkpoints; a label may hold "="; probes that match no fabric row and a malformed argument stop
 with a message.
 
@@ -28,12 +28,12 @@ def h_anisotropy(strain):
     return 0.3 * strain / (strain + 0.01)
 
 
-def write_probe(folder, stem, strain, a13, a23, K=K_C):
+def write_probe(folder, stem, strain, a13, a23, K=K_C, checks_passed=1):
     """A probe CSV with (C11 - C33)/K_C = a13, (C22 - C33)/K_C = a23."""
     os.makedirs(folder, exist_ok=True)
     C = {"C_11": K * (1 + a13), "C_22": K * (1 + a23), "C_33": K}
-    columns = ["source", "strain", "K_C"] + [f"C_{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)]
-    row = {"source": f"runs/x/relaxed/{stem}.h5", "strain": strain, "K_C": K}
+    columns = ["source", "strain", "K_C", "checks_passed"] + [f"C_{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)]
+    row = {"source": f"runs/x/relaxed/{stem}.h5", "strain": strain, "K_C": K, "checks_passed": checks_passed}
     row.update({f"C_{i}{j}": C.get(f"C_{i}{j}", 0.1 * K) for i in (1, 2, 3) for j in (1, 2, 3)})
     with open(os.path.join(folder, f"probe_{stem}.csv"), "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=columns)
@@ -104,6 +104,18 @@ class PaperStiffness(unittest.TestCase):
         self.assertEqual(ratio[1:], [f"({RATIO:.2f}", "-", f"{RATIO:.2f})"])
         for suffix in ("_C123.png", "_A.png"):
             self.assertGreater(os.path.getsize(self.prefix + suffix), 10_000)
+
+    def test_a_probe_kept_with_failed_checks_is_left_out_of_every_number(self):
+        # A campaign keeps a failed probe in the same folder with checks_passed = 0 (check_increment = false).
+        write_probe(self.probes, "load_009", 0.5, -40.0, 40.0, checks_passed=0)
+        with open(self.fabric, "a") as f:
+            f.write("runs/x/relaxed/load_009.h5" + ",1" * 18 + "\n")
+        result = run(self.prefix, f"synthetic={self.probes},{self.fabric}")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        (shape,) = table_rows(result.stdout, "synthetic")
+        self.assertEqual(shape[1], "8")
+        ratio = shape[4].split()
+        self.assertEqual(ratio[0], f"{RATIO:.2f}")
 
     def test_max_strain_keeps_the_earlier_checkpoints(self):
         result = run(self.prefix, f"early={self.probes},{self.fabric},0.06")

@@ -9,9 +9,9 @@ Pearson correlations c1, c2 of C11 - C33 and C22 - C33 with each contact fabric 
 
 usage: paper_stiffness.py OUTPUT_PREFIX LABEL=PROBE_CSV_FOLDER,FABRIC_SERIES.csv[,MAX_STRAIN] [...]
   writes OUTPUT_PREFIX_C123.png (a row per shape) and OUTPUT_PREFIX_A.png (all shapes); MAX_STRAIN
-  (a fraction) keeps only the checkpoints up to that loading strain. Probes in a folder
-  probes_unchecked beside PROBE_CSV_FOLDER (refused by the linearity check, run again with it off)
-  are drawn as open markers and left out of every number.
+  (a fraction) keeps only the checkpoints up to that loading strain. Probes whose checks failed
+  (checks_passed = 0 in their CSV, or in a folder probes_unchecked beside PROBE_CSV_FOLDER) are
+  drawn as open markers and left out of every number.
 """
 import csv
 import glob
@@ -35,12 +35,15 @@ def stem(path):
     return os.path.splitext(os.path.basename(path))[0]
 
 
-def read_probes(folder):
-    """{checkpoint stem: (strain, K_C, C 3x3)} from probe_<stem>.csv files."""
+def read_probes(folder, passed=True):
+    """{checkpoint stem: (strain, K_C, C 3x3)} from probe_<stem>.csv files: those whose checks passed,
+    or with passed=False those a campaign kept with checks_passed = 0 (probe.check_increment = false)."""
     probes = {}
     for path in glob.glob(os.path.join(folder, "probe_*.csv")):
         with open(path) as f:
             row = next(csv.DictReader(f))
+        if (row.get("checks_passed", "1") != "0") != passed:
+            continue
         C = np.array([[float(row[f"C_{i}{j}"]) for j in (1, 2, 3)] for i in (1, 2, 3)])
         probes[stem(row["source"])] = (float(row["strain"]), float(row["K_C"]), C)
     return probes
@@ -54,10 +57,12 @@ def read_fabric(path):
 
 
 def unchecked_probes(probe_folder, max_strain="inf"):
-    """(strain, K_C, C) arrays of the probes in the sibling folder probes_unchecked (probes the linearity
-    check refused, run again with it off): drawn as open markers, left out of every number."""
+    """(strain, K_C, C) arrays of the probes whose checks failed: kept in the folder with checks_passed = 0,
+    or in the sibling folder probes_unchecked (refused, run again with the check off): drawn as open
+    markers, left out of every number."""
     folder = os.path.join(os.path.dirname(os.path.normpath(probe_folder)), "probes_unchecked")
-    probes = sorted((p for p in read_probes(folder).values() if p[0] <= float(max_strain)), key=lambda p: p[0])
+    found = {**read_probes(folder), **read_probes(probe_folder, passed=False)}
+    probes = sorted((p for p in found.values() if p[0] <= float(max_strain)), key=lambda p: p[0])
     return (np.array([p[0] for p in probes]), np.array([p[1] for p in probes]),
             np.array([p[2] for p in probes]).reshape(-1, 3, 3))
 
