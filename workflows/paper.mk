@@ -50,8 +50,7 @@ paper-runs: $(foreach r,$(paper_runs),paper-run-$(call paper_name,$(r)))
 paper: paper-runs
 	$(MAKE) paper-figures
 
-$(PAPER_REPORT): $(foreach r,$(paper_runs),$(PAPER_OUT)/$(r)/report.md) $(wildcard plots/paper_*.py) \
-                 plots/shapes_stress_strain.py
+$(PAPER_REPORT): $(foreach r,$(paper_runs),$(PAPER_OUT)/$(r)/report.md) $(wildcard plots/*.py)
 	$(PYTHON) plots/paper_report.py $(PAPER_OUT) \
 	  $(foreach r,$(paper_runs),$(call paper_label,$(r))=$(abspath $(PAPER_OUT)/$(r)))
 

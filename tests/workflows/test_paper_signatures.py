@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""workflows/plots/paper_signatures.py on a synthetic loading history whose signatures are known,
-and paper_spread.py on two realisations of one shape (that history scaled by 1 and 5/6):
+"""workflows/plots/stress_strain.py signatures on a synthetic loading history whose signatures are known,
+and stress_strain.py spread on two realisations of one shape (that history scaled by 1 and 5/6):
 (sigma11 - sigma33)/p rises to 1.2 at 4%, holds to 6% and falls linearly to 0.9 at 60%; eps_v
 falls to -0.5% at 2% and then rises linearly to +6.8% at 60%; the cell ends at x3 = 2.67 times
 its width with eps11 = -0.60, so x1/x3 = 1.5 * 0.4 / 2.67 from an initial L1/L3 of 1.5. A
@@ -18,8 +18,7 @@ import unittest
 import numpy as np
 
 SOURCE = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
-SCRIPT = os.path.join(SOURCE, "workflows", "plots", "paper_signatures.py")
-SPREAD = os.path.join(SOURCE, "workflows", "plots", "paper_spread.py")
+SCRIPT = os.path.join(SOURCE, "workflows", "plots", "stress_strain.py")
 PYTHON = "/usr/bin/python3"
 P = 1.0e5
 
@@ -55,7 +54,7 @@ class PaperSignatures(unittest.TestCase):
         write_history(self.history)
 
     def run_script(self, *args):
-        return subprocess.run([PYTHON, SCRIPT, *args], capture_output=True, text=True)
+        return subprocess.run([PYTHON, SCRIPT, "signatures", *args], capture_output=True, text=True)
 
     def test_known_signatures(self):
         table = os.path.join(self.work, "signatures.csv")
@@ -102,7 +101,7 @@ class PaperSpread(unittest.TestCase):
         write_history(paths[0], 1.0)
         write_history(paths[1], 5.0 / 6.0)  # peak 1.0
         prefix = os.path.join(work, "spread")
-        done = subprocess.run([PYTHON, SPREAD, prefix, f"spheres (realisation 1)={paths[0]}@1.5",
+        done = subprocess.run([PYTHON, SCRIPT, "spread", prefix, f"spheres (realisation 1)={paths[0]}@1.5",
                                f"spheres (realisation 2)={paths[1]}@1.5", f"other={paths[0]}"],
                               capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stderr)

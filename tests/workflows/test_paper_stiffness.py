@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""workflows/plots/paper_stiffness.py on synthetic probe and fabric CSVs whose numbers are known:
+"""workflows/plots/stiffness.py shapes on synthetic probe and fabric CSVs whose numbers are known:
 C11 - C33 = 4.1 K_C (H11 - H33)/(tr H/3) at every strain gives the ratio 4.10 and c1 = 1.000; a
 probe in probes_unchecked/, or kept with checks_passed = 0, is drawn but left out of every number; MAX_STRAIN drops the later
 checkpoints; a label may hold "="; probes that match no fabric row and a malformed argument stop
@@ -16,7 +16,7 @@ import tempfile
 import unittest
 
 SOURCE = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
-SCRIPT = os.path.join(SOURCE, "workflows", "plots", "paper_stiffness.py")
+SCRIPT = os.path.join(SOURCE, "workflows", "plots", "stiffness.py")
 PYTHON = "/usr/bin/python3"
 STRAINS = [2e-5, 1e-4, 1e-3, 1e-2, 0.05, 0.1, 0.3, 0.6]
 RATIO = 4.1
@@ -59,7 +59,7 @@ def write_fabric(path, stems):
 
 
 def run(*args):
-    return subprocess.run([PYTHON, SCRIPT, *args], capture_output=True, text=True)
+    return subprocess.run([PYTHON, SCRIPT, "shapes", *args], capture_output=True, text=True)
 
 
 def table_rows(stdout, first_cell):
@@ -151,7 +151,7 @@ class PaperStiffness(unittest.TestCase):
     def test_an_argument_without_its_fabric_series_stops_with_the_usage(self):
         result = run(self.prefix, f"synthetic={self.probes}")
         self.assertNotEqual(result.returncode, 0)
-        self.assertIn("usage: paper_stiffness.py", result.stderr)
+        self.assertIn("stiffness.py shapes OUTPUT_PREFIX", result.stderr)
 
 
 if __name__ == "__main__":

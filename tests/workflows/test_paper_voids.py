@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The paper-size void and permeability scripts (workflows/plots/paper_voids_csv.py, paper_voids.py,
-permeability_checks_csv.py) on synthetic stage files whose numbers are known: the strain comes
+"""The void and permeability scripts (workflows/plots/voids.py csv and shapes,
+workflows/studies/permeability_checks_csv.py) on synthetic stage files whose numbers are known: the strain comes
 from the checkpoint, the columns from the right datasets, the anisotropies and the direction files'
 k = nu <j> / F are computed as documented, and a missing checkpoint is named.
 
@@ -18,6 +18,7 @@ import numpy as np
 
 SOURCE = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 PLOTS = os.path.join(SOURCE, "workflows", "plots")
+STUDIES = os.path.join(SOURCE, "workflows", "studies")
 PYTHON = "/usr/bin/python3"
 D50 = 0.17e-3
 CURVES = ["ball"] + [f"{kind}_x{a}" for kind in ("spar", "disk") for a in (1, 2, 3)]
@@ -90,7 +91,7 @@ class PaperVoids(unittest.TestCase):
         self.tmp.cleanup()
 
     def collect(self):
-        result = run(os.path.join(PLOTS, "paper_voids_csv.py"), self.run_folder, self.out)
+        result = run(os.path.join(PLOTS, "voids.py"), "csv", self.run_folder, self.out)
         self.assertEqual(result.returncode, 0, result.stderr)
 
     def test_void_rows_carry_the_checkpoint_strain_and_the_medians_in_d50(self):
@@ -124,7 +125,7 @@ class PaperVoids(unittest.TestCase):
     def test_figures_are_drawn_and_the_correlations_printed(self):
         self.collect()
         prefix = os.path.join(self.tmp.name, "fig")
-        result = run(os.path.join(PLOTS, "paper_voids.py"), prefix, f"alpha = 0.5={self.out}")
+        result = run(os.path.join(PLOTS, "voids.py"), "shapes", prefix, f"alpha = 0.5={self.out}")
         self.assertEqual(result.returncode, 0, result.stderr)
         for suffix in ("distributions", "anisotropy", "permeability"):
             self.assertGreater(os.path.getsize(f"{prefix}_{suffix}.png"), 10000)
@@ -134,14 +135,14 @@ class PaperVoids(unittest.TestCase):
 
     def test_a_missing_checkpoint_is_named(self):
         os.remove(os.path.join(self.run_folder, "dem", "load_001.h5"))
-        result = run(os.path.join(PLOTS, "paper_voids_csv.py"), self.run_folder, self.out)
+        result = run(os.path.join(PLOTS, "voids.py"), "csv", self.run_folder, self.out)
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("load_001.h5 is missing", result.stderr)
 
     def test_no_void_results_is_refused(self):
         empty = os.path.join(self.tmp.name, "empty")
         os.makedirs(os.path.join(empty, "voxel"))
-        result = run(os.path.join(PLOTS, "paper_voids_csv.py"), empty, self.out)
+        result = run(os.path.join(PLOTS, "voids.py"), "csv", empty, self.out)
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("run the campaign's voxel stage first", result.stderr)
 
@@ -165,7 +166,7 @@ class PermeabilityChecks(unittest.TestCase):
             whole = os.path.join(tmp, "whole.h5")
             write_permeability(whole, np.diag([1.0, 2.0, 3.0]) * 1e-12)
             out = os.path.join(tmp, "checks.csv")
-            result = run(os.path.join(PLOTS, "permeability_checks_csv.py"), out,
+            result = run(os.path.join(STUDIES, "permeability_checks_csv.py"), out,
                          f"walls={paths[0]}", f"walls={paths[1]}", f"periodic={whole}")
             self.assertEqual(result.returncode, 0, result.stderr)
             rows = {r["label"]: r for r in read_rows(out)}

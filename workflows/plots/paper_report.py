@@ -2,16 +2,16 @@
 """The paper's figures and the comparison's numbers from campaign run folders (make paper).
 
 For each run folder (docs/user-guide.md, "The run folder") the void and permeability CSVs go to
-OUT/results/<slug>/ (paper_voids_csv.py); then every paper figure family is drawn into OUT/figures/
-by its own script, and OUT/comparison.md gathers the figures with the numbers the scripts print:
+OUT/results/<slug>/ (voids.py csv); then every paper figure family is drawn into OUT/figures/ by
+its script, and OUT/comparison.md gathers the figures with the numbers the scripts print:
 
-  signatures   paper_signatures.py   peak, softening, large-strain ratio, dilation, the cell at 60%
-  spread       paper_spread.py       with several realisations of a shape: their mean and spread
-  fig3         paper_fig3.py         Fig. 3 (a-d); shapes_stress_strain.py: e and particle alignment
-  fabric       paper_fabric.py       Figs. 4-7 and the DEM-side void measures (fabric series)
-  table2       paper_table2.py       Table 2: fabric-stress correlations averaged over the shapes
-  stiffness    paper_stiffness.py    Figs. C123 and A, c1/c2 and the stiffness-fabric ratio (probes)
-  voids        paper_voids.py        void distributions, anisotropies, permeability (voxel, LBM)
+  stress_strain.py signatures   peak, softening, large-strain ratio, dilation, the cell at 60%
+  stress_strain.py spread       with several realisations of a shape: their mean and spread
+  stress_strain.py fig3, shapes Fig. 3 (a-d); e and particle alignment
+  fabric.py shapes              Figs. 4-7 and the DEM-side void measures (fabric series)
+  fabric.py table2              Table 2: fabric-stress correlations averaged over the shapes
+  stiffness.py shapes           Figs. C123 and A, c1/c2 and the stiffness-fabric ratio (probes)
+  voids.py shapes               void distributions, anisotropies, permeability (voxel, LBM)
 
 A family whose inputs some run lacks (a stage that was not built, or not given those checkpoints)
 is left out with a line saying which file is missing; a script that fails stops the report with
@@ -83,39 +83,39 @@ class Report:
     def stress_strain(self):
         histories = [f"{label}={run}/dem/history.h5" for label, run in self.runs]
         with_aspect = [f"{label}={run}/dem/history.h5@{initial_aspect(run):.12g}" for label, run in self.runs]
-        table = script("paper_signatures.py", "--csv", os.path.join(self.figures, "signatures.csv"), *with_aspect)
+        table = script("stress_strain.py", "signatures", "--csv", os.path.join(self.figures, "signatures.csv"), *with_aspect)
         self.section("The paper's stress-strain signatures (section 4; the Digitized figure's text)", [], table,
-                     "paper_signatures.py")
+                     "stress_strain.py signatures")
         if len({re.sub(r" \(realisation \d+\)$", "", label) for label, _ in self.runs}) < len(self.runs):
-            table = script("paper_spread.py", os.path.join(self.figures, "spread"), *with_aspect)
-            self.section("The spread between realisations", ["spread.png"], table, "paper_spread.py")
-        script("paper_fig3.py", os.path.join(self.figures, "fig3.png"), *histories)
-        script("shapes_stress_strain.py", os.path.join(self.figures, "shapes"), *histories)
+            table = script("stress_strain.py", "spread", os.path.join(self.figures, "spread"), *with_aspect)
+            self.section("The spread between realisations", ["spread.png"], table, "stress_strain.py spread")
+        script("stress_strain.py", "fig3", os.path.join(self.figures, "fig3.png"), *histories)
+        script("stress_strain.py", "shapes", os.path.join(self.figures, "shapes"), *histories)
         self.section("Fig. 3: stress ratios, volume change and pi-plane paths", ["fig3.png", "shapes_stress_strain.png"], "",
-                     "paper_fig3.py, shapes_stress_strain.py")
+                     "stress_strain.py fig3, shapes")
 
     def fabric(self):
         series = "fabric/fabric_series.csv"
         if (path := self.missing(series)) is not None:
             return self.left_out("Figs. 4-7: fabric", path)
-        printed = script("paper_fabric.py", os.path.join(self.figures, "fabric"),
+        printed = script("fabric.py", "shapes", os.path.join(self.figures, "fabric"),
                          *[f"{label}={run}/{series}" for label, run in self.runs])
         images = [f"fabric_{k}.png" for k in ("particles", "contacts", "stress", "voids_dem")]
-        self.section("Figs. 4-7: fabric", images, printed, "paper_fabric.py")
+        self.section("Figs. 4-7: fabric", images, printed, "fabric.py shapes")
         correlations = "fabric/fabric_series_correlations.csv"
         if (path := self.missing(correlations)) is not None:
             return self.left_out("Table 2: fabric-stress correlations", path)
-        table = script("paper_table2.py", *[f"{label}={run}/{correlations}" for label, run in self.runs])
-        self.section("Table 2: fabric-stress correlations, averaged over the shapes", [], table, "paper_table2.py")
+        table = script("fabric.py", "table2", *[f"{label}={run}/{correlations}" for label, run in self.runs])
+        self.section("Table 2: fabric-stress correlations, averaged over the shapes", [], table, "fabric.py table2")
 
     def stiffness(self):
         for needed in ("probe", "fabric/fabric_series.csv"):
             if (path := self.missing(needed)) is not None:
                 return self.left_out("Figs. C123 and A: stiffness", path)
-        printed = script("paper_stiffness.py", os.path.join(self.figures, "stiffness"),
+        printed = script("stiffness.py", "shapes", os.path.join(self.figures, "stiffness"),
                          *[f"{label}={run}/probe,{run}/fabric/fabric_series.csv" for label, run in self.runs])
         self.section("Figs. C123 and A: incremental stiffness", ["stiffness_C123.png", "stiffness_A.png"], printed,
-                     "paper_stiffness.py")
+                     "stiffness.py shapes")
 
     def voids(self):
         if (path := self.missing("voxel")) is not None:
@@ -123,13 +123,13 @@ class Report:
         folders = []
         for label, run in self.runs:
             folder = os.path.join(self.out, "results", slug(label))
-            script("paper_voids_csv.py", run, folder)
+            script("voids.py", "csv", run, folder)
             folders.append(f"{label}={folder}")
-        printed = script("paper_voids.py", os.path.join(self.figures, "voids"), *folders)
+        printed = script("voids.py", "shapes", os.path.join(self.figures, "voids"), *folders)
         images = [name for name in ("voids_distributions.png", "voids_anisotropy.png", "voids_permeability.png")
                   if os.path.exists(os.path.join(self.figures, name))]
         self.section("Voids (section 3.4) and permeability (section 5)", images, printed,
-                     "paper_voids_csv.py, paper_voids.py")
+                     "voids.py csv, shapes")
 
     def write(self):
         lines = ["# The paper's study from one campaign", "",

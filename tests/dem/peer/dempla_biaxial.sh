@@ -35,7 +35,7 @@
 #                    from its own consolidation of the same start
 #   aniso_body_spin_slow  aniso_body_spin at a tenth of the rate (the damping rate unchanged)
 # Every run writes WORK_DIR/results/<run>.csv (strain, q13, q23, p, eps_v, void_ratio,
-# coordination); workflows/plots/chart_dem_dempla.py charts them.
+# coordination); workflows/studies/chart_dem_dempla.py charts them.
 #
 # usage: dempla_biaxial.sh BUILD_DIR WORK_DIR DEMPLA_REPO [FINAL_STRAIN [RUN...]]
 #   DEMPLA_REPO: a local copy of github.com/mrkuhn53/dempla, branch master (source/, StartFiles/),
