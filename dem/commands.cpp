@@ -159,6 +159,10 @@ int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, co
                             "resume from load_resume.h5 in its folder, the loading's own state at the newest "
                             "checkpoint",
                             input));
+  require_input(!options.resume || !h5::File::open(input).has_attribute(io::replicated_from_attribute),
+                fmt::format("load --resume: '{}' was written by aniso-dem replicate, not by the loading: "
+                            "start a new loading from it (load without --resume)",
+                            input));
   const std::string run_id = options.resume ? checkpoint.run_id : io::new_run_id(context.comm);
   const std::optional<io::InterruptedRelaxation> interrupted =
       options.resume ? io::read_interrupted_relaxation(input) : std::nullopt;

@@ -1,13 +1,15 @@
 // aniso-dem: periodic-cell DEM. `prepare` builds a dense isotropic assembly,
 // `load` runs biaxial plane strain at constant mean stress from it, `hold` measures
 // how static a checkpoint is and `relax` makes a loosely relaxed checkpoint static;
-// `import` and `export` carry assemblies from and to other codes and ParaView.
+// `import` and `export` carry assemblies from and to other codes and ParaView; `replicate` tiles a
+// checkpoint into copies of its cell.
 #include "common/cli.hpp"
 #include "common/error.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "common/memory.hpp"
 #include "dem/commands.hpp"
 #include "dem/config.hpp"
+#include "dem/interop/replicate.hpp"
 #include "dem/interop/transfer_commands.hpp"
 #include "dem/io/parameters.hpp"
 
@@ -44,6 +46,23 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   auto* export_ = app.add_subcommand(
       "export", "a checkpoint as a LAMMPS data file (and contact dump), or as XDMF for ParaView "
                 "(particles and force chains)");
+  auto* replicate = app.add_subcommand(
+      "replicate", "a checkpoint tiled periodically into n1 x n2 x n3 copies of its cell, every particle and "
+                   "contact with its state, as a checkpoint (--output) for load, relax and every stage");
+  dem::interop::ReplicateOptions replicate_options;
+  replicate->add_option("--input", replicate_options.input, "checkpoint to tile, e.g. prepared.h5 (HDF5)")
+      ->required();
+  replicate
+      ->add_option("--output", replicate_options.output, "tiled checkpoint to write (HDF5; not the input)")
+      ->required();
+  replicate
+      ->add_option(
+          "--copies", replicate_options.copies,
+          "n1,n2,n3: copies of the cell along x, y and z, each >= 1 (particle ids: id + copy index x "
+          "N, copy index i + n1 (j + n2 k))")
+      ->required();
+  replicate->add_flag("--overwrite", replicate_options.overwrite, "replace --output if it exists");
+  replicate->fallthrough();
   dem::interop::ImportOptions import_options;
   import->add_option("--input", import_options.input, "LAMMPS data file, YADE text export or DEMPLA D-file")
       ->required();
@@ -142,14 +161,17 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
                  fmt::format("dem: {} particles on {} rank(s) (at least {:.0f} bytes each)",
                              config.particles.count, comm.size(), min_bytes_per_particle),
                  "lower dem.particles.count or spread the run over more nodes");
-  // import and export take their particles from the files they read, not the configuration.
-  if (import->parsed() || export_->parsed())
+  // import, export and replicate take their particles from the files they read, not the configuration.
+  if (import->parsed() || export_->parsed() || replicate->parsed())
     logger->info("configuration is valid");
   else
     logger->info("configuration is valid ({} particles, seed {})", config.particles.count, config.seed);
   if (options.dry_run) return 0;
 
   if (export_->parsed()) return dem::interop::run_export(export_options, logger, comm);
+  if (replicate->parsed())
+    return dem::interop::run_replicate(replicate_options, config, reader, cli::join_command_line(argc, argv),
+                                       logger, comm);
   const dem::CommandContext context{config, reader, cli::join_command_line(argc, argv), logger, comm};
   if (hold->parsed()) return dem::run_hold(context, *checkpoint, input, hold_options);
   if (import->parsed())

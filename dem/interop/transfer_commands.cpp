@@ -13,14 +13,11 @@
 #include <filesystem>
 
 namespace aniso::dem::interop {
-namespace {
 
 void create_parent_folder(const std::string& path) {
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   if (!folder.empty()) create_output_folder(folder.string());
 }
-
-} // namespace
 
 int run_import(const ImportOptions& options, DemConfig& config, config::Reader& reader,
                const std::string& command_line, const Logger& logger, const mpi::Comm& comm) {

@@ -38,4 +38,7 @@ int run_import(const ImportOptions& options, DemConfig& config, config::Reader& 
 /// Writes the checkpoint's particles (and contacts) in the chosen format, on rank 0.
 int run_export(const ExportOptions& options, const Logger& logger, const mpi::Comm& comm);
 
+/// Creates the folder a file is to be written in (and its parents), if it has one.
+void create_parent_folder(const std::string& path);
+
 } // namespace aniso::dem::interop

@@ -15,6 +15,11 @@
 
 namespace aniso::dem::io {
 
+/// Root attribute of a checkpoint written by `aniso-dem replicate`: the file it tiled (with
+/// replicated_from_hash and replicate_copies; dem/interop/replicate.hpp). Such a file is no state
+/// a loading passed through, so `load --resume` refuses it.
+inline constexpr const char* replicated_from_attribute = "replicated_from";
+
 /// What a checkpoint records beside the simulation's own state.
 struct CheckpointLabels {
   std::vector<std::array<std::uint64_t, 4>> rng_state; ///< every random stream's state (prepare)
