@@ -40,7 +40,8 @@ int main(int argc, char* argv[]) {
     return 2;
   }
   file >> geometry;
-  MultiBlockLattice3D<T, DESCRIPTOR> lattice(nx, ny, nz, new GuoExternalForceBGKdynamics<T, DESCRIPTOR>(1 / tau));
+  MultiBlockLattice3D<T, DESCRIPTOR> lattice(nx, ny, nz,
+                                             new GuoExternalForceBGKdynamics<T, DESCRIPTOR>(1 / tau));
   lattice.periodicity().toggleAll(true);
   defineDynamics(lattice, geometry, new BounceBack<T, DESCRIPTOR>(), 1);
   Array<T, 3> g((T)0, (T)0, (T)0);
@@ -62,8 +63,8 @@ int main(int argc, char* argv[]) {
     if (step % 1000 == 0) pcout << "step " << step << " <u> " << mean << std::endl;
   }
   char line[256];
-  std::snprintf(line, sizeof line, "axis %d steps %ld mean_velocity %.10g K_lattice %.10g converged %d", axis, step,
-                double(mean), double(nu * mean / force), int(converged));
+  std::snprintf(line, sizeof line, "axis %d steps %ld mean_velocity %.10g K_lattice %.10g converged %d", axis,
+                step, double(mean), double(nu * mean / force), int(converged));
   pcout << line << std::endl;
   return converged ? 0 : 3;
 }
