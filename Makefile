@@ -22,7 +22,7 @@ TEST_JOBS  ?= 2
 # Open MPI refuses to run as root unless told it may (containers, CI machines).
 MPI_ENV := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-.PHONY: all demo campaign paper test test-long format clean deps-test deps-demo configure build build-stages
+.PHONY: all demo campaign paper paper-export test test-long format clean deps-test deps-demo configure build build-stages
 
 all: build
 
@@ -59,6 +59,11 @@ PAPER_OUT ?= runs/paper
 paper: deps-demo
 	$(MAKE) build-stages
 	$(MPI_ENV) $(MAKE) -C workflows paper BIN=$(abspath $(BUILD)) PAPER_OUT=$(abspath $(PAPER_OUT))
+
+# Its small results into docs/paper-size (per shape) once it has finished (workflows/paper_export.py).
+paper-export:
+	$(MAKE) -C workflows paper-export BIN=$(abspath $(BUILD)) PAPER_OUT=$(abspath $(PAPER_OUT)) \
+	  PAPER_EXPORT=$(abspath docs/paper-size)
 
 test: deps-test
 	$(MAKE) build

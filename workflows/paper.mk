@@ -11,11 +11,12 @@
 # rerunning after a kill redoes only what is missing; make -j2 runs two stages at a time.
 
 PAPER_OUT     ?= ../runs/paper
+PAPER_EXPORT  ?= ../docs/paper-size
 PAPER_SHAPES  ?= spheres ovoids-0.8 ovoids-0.625 ovoids-0.5
 PAPER_CONFIGS ?= configs
 REALISATIONS  ?= 1
 
-paper_goals := paper paper-runs paper-figures
+paper_goals := paper paper-runs paper-figures paper-export
 paper_realisations := $(shell seq 1 $(REALISATIONS) 2>/dev/null)
 ifneq ($(filter $(paper_goals),$(MAKECMDGOALS)),)
 ifeq ($(strip $(paper_realisations)),)
@@ -31,6 +32,7 @@ paper_runs    := $(foreach s,$(PAPER_SHAPES),$(foreach k,$(paper_realisations),$
 paper_name     = $(subst /,-,$(1))
 paper_config   = $(PAPER_OUT)/configs/$(call paper_name,$(1)).toml
 paper_label    = $(if $(filter 1,$(REALISATIONS)),$(firstword $(subst /, ,$(1))),$(call paper_name,$(1)))
+paper_export_name = $(paper_label)
 PAPER_REPORT  := $(PAPER_OUT)/comparison.md
 
 define paper_run_rules
@@ -55,3 +57,10 @@ $(PAPER_REPORT): $(foreach r,$(paper_runs),$(PAPER_OUT)/$(r)/report.md) $(wildca
 	  $(foreach r,$(paper_runs),$(call paper_label,$(r))=$(abspath $(PAPER_OUT)/$(r)))
 
 paper-figures: $(PAPER_REPORT)
+
+# The run's small results where the docs keep them (paper_export.py): per run its history, fabric
+# series, probes, static states, void and permeability series, preparation log and stage times,
+# then the comparison and its figures; a folder per shape (per shape and realisation with several).
+paper-export: $(PAPER_REPORT)
+	$(PYTHON) paper_export.py $(PAPER_OUT) $(PAPER_EXPORT) \
+	  $(foreach r,$(paper_runs),$(call paper_export_name,$(r))=$(abspath $(PAPER_OUT)/$(r)))

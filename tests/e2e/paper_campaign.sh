@@ -3,7 +3,9 @@
 # few hundred particles, three checkpoints). Checks that it runs every stage of both shapes, draws
 # every figure family and fills the comparison's numbers from the runs; that a paper campaign
 # killed (SIGKILL) during its first load resumes on a rerun without preparing again and ends with
-# the uninterrupted campaign's results bit for bit; that a rerun finds everything up to date; and
+# the uninterrupted campaign's results bit for bit; that `make paper-export` copies the small results
+# (history, fabric, probes, static states, voids, stage times, comparison and figures); that a rerun
+# finds everything up to date; and
 # that a bad REALISATIONS or a shape without a config is refused before anything runs.
 #
 # usage: paper_campaign.sh SOURCE_DIR BUILD_DIR WORK_DIR
@@ -59,6 +61,38 @@ for shape, r in rows.items():
 for heading in ("Table 2", "Figs. C123 and A", "Voids (section 3.4)"):
     assert f"## {heading}" in text, heading
 print("paper e2e: comparison filled for", ", ".join(rows))
+PY
+
+# The export of the small results where the docs keep them (make paper-export).
+export="$work/export"
+paper paper-export PAPER_OUT="$reference" PAPER_EXPORT="$export" >"$work/export.log" 2>&1 \
+  || fail "make paper-export failed: $(tail -5 "$work/export.log")"
+for shape in spheres ovoids-0.5; do
+  for f in history.csv fabric_series.csv fabric_series_correlations.csv probes.csv static_states.csv voids.csv \
+           void_curves.csv permeability.csv prepare.log stage_times.csv; do
+    [ -s "$export/$shape/$f" ] || fail "paper-export wrote no $shape/$f"
+  done
+  cmp -s "$reference/$shape/r1/dem/history.csv" "$export/$shape/history.csv" || fail "exported history of $shape differs"
+done
+cmp -s "$reference/comparison.md" "$export/comparison.md" || fail "exported comparison.md differs"
+[ -s "$export/figures/fig3.png" ] || fail "paper-export copied no figures"
+/usr/bin/python3 - "$reference" "$export" <<'PY' || fail "the exported tables"
+import csv, sys
+import h5py
+out, export = sys.argv[1:]
+for shape in ("spheres", "ovoids-0.5"):
+    probes = list(csv.DictReader(open(f"{export}/{shape}/probes.csv")))
+    assert [r["source"][-11:-3] for r in probes] == ["load_000", "load_001", "load_002"], probes
+    states = list(csv.DictReader(open(f"{export}/{shape}/static_states.csv")))
+    assert len(states) == 3, states
+    for row in states:
+        with h5py.File(f"{out}/{shape}/r1/dem/{row['checkpoint']}.h5") as f:
+            a = f.attrs
+            assert int(row["relaxation_steps"]) == int(a["step"]) - int(a["relaxed_copy_of_step"]), row
+            assert int(row["static_verified"]) == int(a["static_verified"]), row
+    stages = {r["stage"]: float(r["wall_seconds"]) for r in csv.DictReader(open(f"{export}/{shape}/stage_times.csv"))}
+    assert {"prepare", "load"} <= set(stages) and all(t >= 0 for t in stages.values()), stages
+print("paper e2e: export checked")
 PY
 
 # Killed during the first shape's load, once its first checkpoint (a relaxed copy) has left its
