@@ -34,6 +34,13 @@ h5::Provenance provenance_of(const CommandContext& context, const std::string& s
                              context.comm);
 }
 
+// The lines under the timing table, then the halo volume's (collective).
+std::vector<std::string> with_halo(std::vector<std::string> lines, const Simulation& simulation) {
+  for (std::string& line : protocol::halo_lines(simulation))
+    lines.push_back(std::move(line));
+  return lines;
+}
+
 // A phase of the stepping as a line under the timing table.
 std::string phase_line(const std::string& name, std::int64_t steps, std::int64_t total_steps, double seconds,
                        double wall_seconds) {
@@ -124,8 +131,10 @@ int run_prepare(const CommandContext& context, bool resume) {
   protocol::log_timing(
       context.logger, protocol::run_timing(prepared.simulation->times(), output, wall, context.comm), wall,
       context.comm.size(),
-      {fmt::format("compaction cycles: {:.3f} s; consolidation: {:.3f} s (both within the sections above)",
-                   prepared.compaction_seconds, prepared.consolidation_seconds)});
+      with_halo({fmt::format(
+                    "compaction cycles: {:.3f} s; consolidation: {:.3f} s (both within the sections above)",
+                    prepared.compaction_seconds, prepared.consolidation_seconds)},
+                *prepared.simulation));
   return 0;
 }
 
@@ -171,10 +180,11 @@ int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, co
       protocol::run_loading(simulation, config, config.output_dir, provenance, logger, options.resume, run_id,
                             interrupted ? &*interrupted : nullptr);
   protocol::log_timing(logger, summary.timing, summary.wall_seconds, context.comm.size(),
-                       {phase_line("relaxation", summary.relaxation_steps, summary.steps,
-                                   summary.relaxation_seconds, summary.wall_seconds),
-                        fmt::format("checkpoint copies relaxed: {} steps besides, {:.3f} s",
-                                    summary.fork_steps, summary.fork_seconds)});
+                       with_halo({phase_line("relaxation", summary.relaxation_steps, summary.steps,
+                                             summary.relaxation_seconds, summary.wall_seconds),
+                                  fmt::format("checkpoint copies relaxed: {} steps besides, {:.3f} s",
+                                              summary.fork_steps, summary.fork_seconds)},
+                                 simulation));
   if (!summary.interrupted_checkpoint.empty()) return static_cast<int>(ExitCode::interrupted);
   // The copies' steps are not the loading's, but they take the same wall time per step.
   const std::int64_t all_steps = summary.steps + summary.fork_steps;
@@ -209,7 +219,7 @@ int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, co
   }
   const double wall = seconds_since(start);
   protocol::log_timing(context.logger, protocol::run_timing(simulation.times(), output, wall, context.comm),
-                       wall, context.comm.size());
+                       wall, context.comm.size(), protocol::halo_lines(simulation));
   if (options.max_drift > 0 && report.largest_drift > options.max_drift) {
     throw ConvergenceError(fmt::format("hold: p drifted by {:.3e} of its start, above --max-drift {:.3e}",
                                        report.largest_drift, options.max_drift));
@@ -261,7 +271,7 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
   const double wall = seconds_since(start);
   protocol::log_timing(context.logger,
                        protocol::run_timing(simulation.times(), writing_times, wall, context.comm), wall,
-                       context.comm.size());
+                       context.comm.size(), protocol::halo_lines(simulation));
   return 0;
 }
 
@@ -308,7 +318,7 @@ int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, c
   const double wall = seconds_since(start);
   protocol::log_timing(context.logger,
                        protocol::run_timing(simulation.times(), writing_times, wall, context.comm), wall,
-                       context.comm.size());
+                       context.comm.size(), protocol::halo_lines(simulation));
   return 0;
 }
 

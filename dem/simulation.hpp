@@ -104,6 +104,7 @@ public:
   [[nodiscard]] StateMeasures measure() const;
   [[nodiscard]] const mpi::Comm& comm() const { return domain_.comm(); }
   [[nodiscard]] const parallel::Domain& domain() const { return domain_; }
+  [[nodiscard]] const parallel::Halo& ghost_halo() const { return halo_; }
   /// Number of particles on all ranks.
   [[nodiscard]] std::int64_t n_particles() const { return n_particles_; }
   [[nodiscard]] const Mat3& stress() const { return stress_; } ///< at the last control update

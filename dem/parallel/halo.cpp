@@ -3,6 +3,8 @@
 #include "common/error.hpp"
 #include "common/exchange.hpp"
 
+#include <algorithm>
+
 namespace aniso::dem::parallel {
 namespace {
 
@@ -206,6 +208,21 @@ void Halo::update_ghosts(data::Particles& particles, const Domain& domain) {
       get_ghost_state(in.data() + at, particles, ghost++);
   }
   check_invariant(ghost == particles.size(), "every ghost refreshed");
+}
+
+std::size_t Halo::n_sent() const {
+  std::size_t sent = 0;
+  for (const auto& list : send_lists_)
+    sent += list.size();
+  return sent;
+}
+
+int Halo::n_partners() const {
+  return static_cast<int>(std::ranges::count_if(send_lists_, [](const auto& list) { return !list.empty(); }));
+}
+
+std::size_t Halo::state_bytes() {
+  return ghost_state_size * sizeof(double);
 }
 
 } // namespace aniso::dem::parallel

@@ -26,6 +26,12 @@ public:
   void exchange_ghosts(data::Particles& particles, const PeriodicCell& cell, const Domain& domain);
   /// Refreshes ghost positions, orientations and velocities from their owners (collective).
   void update_ghosts(data::Particles& particles, const Domain& domain);
+  /// Particle states one refresh sends (a particle counts once per rank it goes to), and the
+  /// ranks it sends to: the halo volume of this rank.
+  [[nodiscard]] std::size_t n_sent() const;
+  [[nodiscard]] int n_partners() const;
+  /// Bytes of one particle's state in a refresh.
+  [[nodiscard]] static std::size_t state_bytes();
 
 private:
   std::vector<std::vector<std::uint32_t>> send_lists_; ///< owned indices sent to each rank

@@ -5,6 +5,7 @@
 #include "common/log.hpp"
 #include "common/mpi.hpp"
 #include "common/timer.hpp"
+#include "dem/simulation.hpp"
 
 #include <string>
 #include <vector>
@@ -19,5 +20,10 @@ std::vector<TimingRow> run_timing(const SectionTimes& engine, const SectionTimes
 /// protocol phase took ("relaxation: 28,269 of 56,560 steps, 4.1 s").
 void log_timing(const Logger& logger, const std::vector<TimingRow>& rows, double wall_seconds, int n_ranks,
                 const std::vector<std::string>& phases = {});
+
+/// The halo volume of the decomposition the run ended with, one line for the timing table's
+/// phases (collective; none on one rank): ghosts per rank, their share of the owned particles, and
+/// what a per-step refresh sends. It is what a run on many ranks pays in MPI at every step.
+std::vector<std::string> halo_lines(const Simulation& simulation);
 
 } // namespace aniso::dem::protocol

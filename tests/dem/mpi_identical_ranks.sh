@@ -48,5 +48,34 @@ for n in $ranks; do
     echo "FAIL: $n ranks: history differs from 1 rank:"; head -5 "$work/diff.txt"; status=1
   fi
 done
+# The halo volume under the timing table: none on 1 rank; on 2 ranks what one rank sends is the
+# other's ghosts, so the kB a refresh sends per rank are the ghosts per rank times 13 doubles.
+if [[ " $ranks " == *" 2 "* ]]; then
+  one=$("$build/dem/aniso-dem" hold --input "$work/np1/prepared.h5" --steps 1 2>&1)
+  two=$(mpiexec --oversubscribe -n 2 "$build/dem/aniso-dem" hold --input "$work/np1/prepared.h5" --steps 1 2>&1)
+  line=$(grep -m1 " halo: " <<<"$two" || true)
+  if grep -q " halo: " <<<"$one"; then echo "FAIL: a halo line on 1 rank"; status=1; fi
+  if ! /usr/bin/python3 - "$line" "$work/np1/prepared.h5" <<'PY'; then status=1; fi
+import re, sys
+import h5py
+line = sys.argv[1]
+with h5py.File(sys.argv[2], "r") as f:
+    half = len(f["particles/diameter"]) / 2  # owned per rank, on average
+m = re.search(r"halo: (\d+) ghosts per rank \(min (\d+), max (\d+)\), ([\d.]+)% of the owned; a refresh "
+              r"sends ([\d.]+) kB per rank per step \(max ([\d.]+) kB\) to at most (\d+) rank", line)
+if not m:
+    sys.exit(f"FAIL: no halo line on 2 ranks: {line!r}")
+ghosts, low, high, share, sent, _, partners = (float(v) for v in m.groups())
+# On 2 ranks a rank's ghosts are some of the other rank's owned particles.
+checks = [(0 < low <= ghosts <= high and ghosts <= half, "ghosts per rank within (0, N/2]"),
+          (abs(sent - ghosts * 13 * 8 / 1e3) <= 0.05 + 1e-9 * sent, "sent kB = ghosts x 104 B"),
+          (abs(share - 100 * ghosts / half) <= 0.05 + 50 / half, "share of the N/2 owned per rank"),
+          (partners == 1, "one partner rank")]
+failed = [what for ok, what in checks if not ok]
+if failed:
+    sys.exit(f"FAIL: halo line {line!r}: {failed}")
+print(f"halo line on 2 ranks: {int(ghosts)} ghosts per rank, {sent} kB a refresh")
+PY
+fi
 [ $status = 0 ] && echo "identical bits on ranks $ranks: prepared.h5 (ranks 1 and 2), 2 load checkpoints, history"
 exit $status

@@ -13,7 +13,8 @@
 # environment: ANISO_BUILD (default /work/build), COPIES (default "1,1,1 2,2,2 4,4,4 6,5,5"),
 #   RANKS (default "1 2"), STEPS (default 500), REPEATS (default 3), VOXEL_MAX (largest particle
 #   count voxelized, default 500000), VOXEL_RESOLUTION (voxels per d50, default 20)
-# Prints a Markdown table; the raw numbers are in WORK/results.csv. Quote it with the machine, the
+# Prints a Markdown table; the raw numbers are in WORK/results.csv, from which project.py projects
+# the weak scaling to many ranks. Quote it with the machine, the
 # date and the load average it prints.
 set -euo pipefail
 prepared=${1:?usage: run.sh PREPARED.h5 [WORK]}
@@ -66,6 +67,9 @@ for copies in $copies_list; do
       # the halo exchange's share (the timing table's max over ranks): the time in MPI of a step
       halo=$(awk '/info   halo / { print $5; exit }' "$work/hold_${n}_${ranks}_$r.log")
       record "$n" "$copies" "$ranks" halo_s "$halo"
+      # the halo volume: ghosts per rank, from the line under the timing table (none on 1 rank)
+      ghosts=$(sed -n 's/.*halo: \([0-9]*\) ghosts per rank.*/\1/p' "$work/hold_${n}_${ranks}_$r.log")
+      [ -z "$ghosts" ] || record "$n" "$copies" "$ranks" ghosts_per_rank "$ghosts"
       record "$n" "$copies" "$ranks" rss_kb "$rss"
     done
   done
