@@ -15,70 +15,21 @@ fail() {
   exit 1
 }
 
-if [[ $(id -u) -ne 0 ]]; then
-  echo "slurm_campaign: skipped: the local test cluster needs root (SlurmUser=root)"
-  exit 77
-fi
-for program in slurmctld slurmd munged sbatch h5diff; do
-  command -v "$program" >/dev/null || {
-    echo "slurm_campaign: skipped: $program not found (scripts/install-deps.sh installs slurm-wlm munge libpmix2)"
-    exit 77
-  }
-done
+# shellcheck source=tests/workflows/slurm_test_cluster.sh
+source "$source_dir/tests/workflows/slurm_test_cluster.sh"
+slurm_test_cluster_check slurm_campaign
 
 rm -rf "$work"
 mkdir -p "$work"
 workflows=$source_dir/workflows
 config=$workflows/configs/e2e.toml
-cluster=$source_dir/workflows/slurm/local-cluster.sh
-
-# A private cluster: its own state folder (short path: munge's socket path is
-# limited to 108 bytes) and two free ports, so it cannot meet another cluster.
-export ANISO_SLURM_DIR
-ANISO_SLURM_DIR=$(mktemp -d /tmp/aniso-slurm-test.XXXXXX)
-export ANISO_SLURM_PORT
-ANISO_SLURM_PORT=$(/usr/bin/python3 - <<'PY'
-import random, socket
-def free(port):
-    with socket.socket() as s:
-        try:
-            s.bind(("127.0.0.1", port))
-            return True
-        except OSError:
-            return False
-port = next(p for p in random.sample(range(20000, 30000, 2), 200) if free(p) and free(p + 1))
-print(port)
-PY
-)
-stop_cluster() {
-  local code=$?
-  # The watchdog's sleep must go too: it would hold ctest's output pipe open until it ends.
-  [[ -z ${watchdog:-} ]] || { pkill -P "$watchdog" 2>/dev/null; kill "$watchdog" 2>/dev/null; } || true
-  ANISO_SLURM_KEEP=0 "$cluster" stop || true
-  rm -rf "$ANISO_SLURM_DIR"
-  exit $code
-}
-trap stop_cluster EXIT
-trap 'exit 130' INT TERM
-# ctest kills a test that overruns its TIMEOUT (900 s) with SIGKILL, which no
-# trap sees, and bash runs a trap only once the command in progress ends. So a
-# watchdog stops the daemons itself before that, then ends the test.
-(
-  sleep "${SLURM_TEST_LIMIT:-840}" </dev/null >/dev/null 2>&1
-  echo "slurm_campaign: FAIL: over the time limit; stopping the cluster" >&2
-  "$cluster" stop
-  kill -TERM $$
-) &
-watchdog=$!
-
 # The reference: the same campaign run locally, one process per stage.
 make -s -C "$workflows" campaign CONFIG="$config" OUT="$work/local" BIN="$build_dir" >"$work/local.log" 2>&1 \
   || fail "local campaign failed: $(tail -5 "$work/local.log")"
 ! grep -q 'campaign: skipping' "$work/local.log" || fail "the local campaign skipped a stage: $(grep 'skipping' "$work/local.log")"
 
 started=$SECONDS
-eval "$("$cluster" start)"
-[[ -n ${SLURM_CONF:-} ]] || fail "local-cluster.sh start printed no SLURM_CONF"
+slurm_test_cluster slurm_campaign
 "$workflows/slurm/submit.py" --config "$config" --out "$work/slurm" --bin "$build_dir" --wait \
   2>"$work/submit.log" || fail "SLURM campaign failed: $(cat "$work/submit.log"; tail -20 "$work"/slurm/slurm/*.log)"
 echo "slurm_campaign: SLURM campaign done in $((SECONDS - started)) s"
