@@ -180,6 +180,10 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
     bool speeding = false; // left on the growth of its kinetic energy
     double drift = 0;
     double calmest = std::numeric_limits<double>::infinity(); // lowest kinetic/elastic ratio so far
+    // A window of a large assembly takes minutes to hours (20,000 steps of a million particles: two
+    // hours on one core): it says how far it is, as the minimisation does.
+    Progress window_progress(logger, label + " (verifying at a fixed cell)",
+                             static_cast<double>(config.verify_steps), 10.0);
     while (state.verified < config.verify_steps && stable) {
       phase.advance_to_update();
       if (phase.steps() % 5000 == 0) trace(simulation, logger, label + " (verifying)", phase.steps());
@@ -199,6 +203,9 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
       stable = e.unbalanced_force_ratio < config.tolerance && e.unbalanced_torque_ratio < config.tolerance &&
                std::abs(drift) < config.stress_tolerance && calm;
       state.verified += simulation.settings().control_interval;
+      window_progress.update(static_cast<double>(state.verified), [&] {
+        return fmt::format("p drift {:+.2e}, unbalanced-force ratio {:.2e}", drift, e.unbalanced_force_ratio);
+      });
       if (stable && start.stoppable && stop_requested(simulation.comm(), simulation.step_count())) {
         // Stored at the window's start, to verify again on resume: the same bits as going on.
         const std::int64_t replayed = state.verified;
