@@ -9,6 +9,7 @@
 # far smaller than the timing noise.
 #
 # usage: compare.sh BIN_A BIN_B [STEPS=1000] [REPEATS=7] [WORKDIR=/tmp/aniso-dem-ovoid]
+# environment: MODE (load, the default, or hold: bench_dem_steps' mode)
 set -euo pipefail
 a=$1
 b=$2
@@ -24,7 +25,7 @@ results=$work/compare.txt
 for _ in $(seq "$repeats"); do
   for alpha in 0.5 1.0; do
     for bin in "$a" "$b"; do
-      rate=$("$bin" "$work/alpha_$alpha/prepared.h5" "$steps" 1 | sed 's/.*: \([0-9.e+]*\) particle-steps.*/\1/')
+      rate=$("$bin" "$work/alpha_$alpha/prepared.h5" "$steps" 1 "${MODE:-load}" | sed 's/.*: \([0-9.e+]*\) particle-steps.*/\1/')
       echo "$bin $alpha $rate" >>"$results"
     done
   done

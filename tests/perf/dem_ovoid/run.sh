@@ -6,7 +6,9 @@
 # median of REPEATS runs, alternating the two so that machine noise hits both alike.
 #
 # usage: run.sh [COUNT=6400] [STEPS=1000] [REPEATS=5] [WORKDIR=/tmp/aniso-dem-ovoid]
-# environment: ANISO_BUILD (default: the repository's build/), RANKS (default 1)
+# environment: ANISO_BUILD (default: the repository's build/), RANKS (default 1), MODE (load, the
+#   default: biaxial loading steps with the servo; hold: a fixed cell, where a static packing's
+#   apart pairs stay proven apart and the spheres run twice as fast, the ovoids not)
 set -euo pipefail
 count=${1:-6400}
 steps=${2:-1000}
@@ -15,6 +17,7 @@ work=${4:-/tmp/aniso-dem-ovoid}
 here=$(cd "$(dirname "$0")" && pwd)
 build=${ANISO_BUILD:-$here/../../../build}
 ranks=${RANKS:-1}
+mode=${MODE:-load}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$work"
 for alpha in 1.0 0.5; do
@@ -29,7 +32,7 @@ done
 : >"$work/results.txt" # this run's rates only
 for repeat in $(seq "$repeats"); do
   for alpha in 1.0 0.5; do
-    mpiexec -n "$ranks" "$build/tests/perf/bench_dem_steps" "$work/alpha_$alpha/prepared.h5" "$steps" 1 |
+    mpiexec -n "$ranks" "$build/tests/perf/bench_dem_steps" "$work/alpha_$alpha/prepared.h5" "$steps" 1 "$mode" |
       sed "s/^/alpha $alpha: /" | tee -a "$work/results.txt"
   done
 done
