@@ -4,12 +4,43 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <system_error>
 
 namespace aniso::mpi {
 namespace {
 
 void check(int status, const char* what) {
   if (status != MPI_SUCCESS) throw Error(ExitCode::internal_error, std::string("MPI call failed: ") + what);
+}
+
+// A process that mpiexec or srun started carries its rank in the environment; one started on its
+// own is a singleton.
+bool started_by_launcher() {
+  return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMIX_RANK") != nullptr ||
+         std::getenv("PMI_RANK") != nullptr;
+}
+
+// Open MPI 4's isolated singletons all take job family 0, so every one of a user's singletons on a
+// host uses the session directory <tmp>/ompi.<host>.<uid>/jf.0: created check-then-mkdir and
+// removed by the first to finish. Two stages started at once by make -j or ctest -j race there, and
+// the loser aborts in MPI_Init ("A call to mkdir was unable to create the desired directory ...
+// File exists"; seen in CI on an LBM direction of the paper e2e test; open-mpi/ompi#8510). A
+// singleton gets a session base of its own under $TMPDIR (or /tmp), removed when it ends; the
+// user's own orte_tmpdir_base wins. Empty when not made (launched, set by the user, or no
+// writable temporary folder: then Open MPI's default, as before).
+std::string own_session_base() {
+#if defined(OPEN_MPI) && OMPI_MAJOR_VERSION < 5
+  if (started_by_launcher() || std::getenv("OMPI_MCA_orte_tmpdir_base") != nullptr) return {};
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/aniso-mpi-XXXXXX";
+  if (mkdtemp(pattern.data()) == nullptr) return {};
+  setenv("OMPI_MCA_orte_tmpdir_base", pattern.c_str(), 1);
+  return pattern;
+#else
+  return {};
+#endif
 }
 
 } // namespace
@@ -31,6 +62,7 @@ Environment::Environment(int& argc, char**& argv) {
     // sits next to the file being written and is removed when it is closed. Under mpiexec the
     // session directory is the job's own, and the choice makes no difference.
     setenv("OMPI_MCA_sharedfp", "^sm", 0);
+    session_base_ = own_session_base();
     check(MPI_Init(&argc, &argv), "MPI_Init");
   }
   // Errors come back as codes so that we can throw with a message instead of aborting silently.
@@ -41,6 +73,8 @@ Environment::~Environment() {
   int finalized = 0;
   MPI_Finalized(&finalized);
   if (!finalized) MPI_Finalize();
+  std::error_code ignored; // a leftover in the temporary folder is no reason to fail a finished run
+  if (!session_base_.empty()) std::filesystem::remove_all(session_base_, ignored);
 }
 
 Comm Comm::world() {

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace aniso::mpi {
@@ -21,6 +22,9 @@ public:
   ~Environment();
   Environment(const Environment&) = delete;
   Environment& operator=(const Environment&) = delete;
+
+private:
+  std::string session_base_; ///< a singleton's own Open MPI session base, removed at the end (mpi.cpp)
 };
 
 /// A communicator handle with value semantics (it does not own the MPI_Comm unless it came from split()).
