@@ -93,8 +93,10 @@ bool finish_config(const config::Reader& reader, const CommonOptions& options, c
 
 std::string join_command_line(int argc, char** argv) {
   std::string line;
-  for (int i = 0; i < argc; ++i)
-    line += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 0; i < argc; ++i) {
+    if (i > 0) line += ' '; // appended piecewise: GCC 12's link-time optimisation flags
+    line += argv[i];        // "a" + std::string(b) with a false -Wstringop-overflow
+  }
   return line;
 }
 

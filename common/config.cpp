@@ -212,7 +212,8 @@ std::vector<double> Reader::reals(std::string_view key, const std::vector<double
           fmt::format("config key '{}' in {}: element {} = {} {} is out of range, expected {} ({})", key,
                       source_, i, format_real(values[i]), unit, range.describe(), help));
     }
-    listing += (i ? ", " : "") + format_real(values[i]);
+    if (i > 0) listing += ", "; // piecewise, as in join_command_line (GCC 12, LTO)
+    listing += format_real(values[i]);
   }
   remember(key, "[" + listing + "]", unit, "each in " + range.describe(), help);
   return values;

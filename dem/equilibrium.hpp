@@ -10,6 +10,7 @@
 //     damping (dem/model/integrator.hpp, damp_velocities).
 
 #include "common/mpi.hpp"
+#include "dem/data/contact_sums.hpp"
 #include "dem/data/neighbors.hpp"
 #include "dem/data/particles.hpp"
 
@@ -33,6 +34,11 @@ struct Equilibrium {
 
 /// Collective. Uses the forces and contact records of the last force pass.
 Equilibrium measure_equilibrium(const data::Particles& particles, const data::NeighborList& neighbors,
+                                const mpi::Comm& comm);
+
+/// Collective. The same measure from the contact part the last force pass summed (its
+/// ContactSums::balance) and the particles' forces: the same bits as measure_equilibrium.
+Equilibrium measure_equilibrium(const data::Particles& particles, const data::BalanceSums& contacts,
                                 const mpi::Comm& comm);
 
 } // namespace aniso::dem

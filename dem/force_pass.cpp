@@ -167,7 +167,7 @@ ForcePass compute_contact_forces(data::Particles& particles, const PeriodicCell&
     }
     write_record(record, kinematics.normal, branch, arm_i, overlap, result.force_on_i, result.normal_force,
                  result.tangential_stiffness);
-    if (sums != nullptr && i < particles.n_owned) sums->add(record);
+    if (sums != nullptr) sums->add(record, history[k], i, j, static_cast<std::uint32_t>(particles.n_owned));
   }
   return pass;
 }

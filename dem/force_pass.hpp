@@ -40,7 +40,8 @@ struct ContactInput {
 /// cell's diagonal rate, which adds the affine part to relative velocities. `bodies` is the
 /// caller's scratch for the particles' world-frame bodies, refilled here (kept between passes
 /// so that a step allocates nothing). With `sums`, every touching contact this rank counts (its
-/// lower-id particle owned here) is added to them as its record is written.
+/// lower-id particle owned here) is added to them as its record is written, and to their
+/// balance part, when they have one, as measure_equilibrium would add it.
 ForcePass compute_contact_forces(data::Particles& particles, const PeriodicCell& cell,
                                  const Vec3& strain_rate, const model::ContactMaterial& material,
                                  double time_step, const ContactInput& input, data::NeighborList& neighbors,

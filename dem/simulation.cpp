@@ -76,7 +76,7 @@ void Simulation::rebuild_decomposition() {
 }
 
 void Simulation::compute_forces(bool measure) {
-  if (measure) contact_sums_ = data::ContactSums{};
+  if (measure) contact_sums_.reset(measures_equilibrium(), particles_.n_owned);
   const ForcePass pass =
       compute_contact_forces(particles_, cell_, control_.strain_rate, settings_.material, settings_.time_step,
                              contact_input(), neighbors_, bodies_, measure ? &contact_sums_ : nullptr);
@@ -105,7 +105,13 @@ void Simulation::update_control() {
   if (!std::isfinite(stress_.sum())) {
     throw NumericalError(fmt::format("step {}: the stress is not finite: the run exploded", step_));
   }
-  if (watch_equilibrium_ || settings_.global_damping > 0) update_equilibrium();
+  if (measures_equilibrium()) {
+    // The force pass summed the contacts' part if it knew this update would follow.
+    const bool summed = contact_sums_step_ == step_ && contact_sums_.balance.has_value();
+    equilibrium_ = summed ? measure_equilibrium(particles_, *contact_sums_.balance, comm())
+                          : measure_equilibrium(particles_, neighbors_, comm());
+    update_damping_rate();
+  }
   const double interval = static_cast<double>(settings_.control_interval) * settings_.time_step;
   model::update_strain_rates(control_, stress_, measures.stiffness, interval, settings_.servo);
 }

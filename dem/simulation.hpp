@@ -151,6 +151,11 @@ private:
   [[nodiscard]] ContactInput contact_input() const { return {&shapes_, settings_.hertz_radius}; }
   void update_control();
   void update_equilibrium();
+  /// Whether a control update measures the equilibrium (it is watched, or the global damping needs
+  /// the contact stiffness).
+  [[nodiscard]] bool measures_equilibrium() const {
+    return watch_equilibrium_ || settings_.global_damping > 0;
+  }
   void update_damping_rate();
   void rebuild_decomposition();
 

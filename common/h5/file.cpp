@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -183,10 +184,9 @@ unsigned open_flags(File::Access access) {
 } // namespace
 
 std::string format_dims(const Dims& dims) {
-  std::string text = "[";
-  for (std::size_t axis = 0; axis < dims.size(); ++axis)
-    text += (axis == 0 ? "" : ", ") + std::to_string(dims[axis]);
-  return text + "]";
+  // fmt rather than string concatenation, which GCC 12 under link-time optimisation flags with a
+  // false -Wstringop-overflow (GCC bug 105329's family).
+  return fmt::format("[{}]", fmt::join(dims, ", "));
 }
 
 // ---- RowSelection

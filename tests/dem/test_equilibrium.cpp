@@ -169,6 +169,30 @@ Simulation loaded_for_3000_steps(const DemConfig& config) {
   return simulation;
 }
 
+TEST(Equilibrium, ForcePassSumsGiveTheTraversalsBits) {
+  // A control update that measures the equilibrium takes its contact part from the force pass
+  // (ContactSums::balance); measure_equilibrium's own traversal of the records must agree to the
+  // bit, on a moving, loaded assembly with the global damping on.
+  DemConfig config = test::small_config(150, 5);
+  config.integration.global_damping = 0.2;
+  Simulation simulation = loaded_for_3000_steps(config);
+  ASSERT_GT(simulation.settings().global_damping, 0.0);
+  for (int n = 0; n < 3 * simulation.settings().control_interval; ++n) {
+    simulation.step();
+    if (!simulation.at_control_update()) continue;
+    const Equilibrium fused = simulation.equilibrium();
+    const Equilibrium traversed =
+        measure_equilibrium(simulation.particles(), simulation.neighbors(), simulation.comm());
+    ASSERT_GT(fused.n_contacts, 0);
+    EXPECT_EQ(fused.n_contacts, traversed.n_contacts);
+    EXPECT_EQ(fused.unbalanced_force_ratio, traversed.unbalanced_force_ratio);
+    EXPECT_EQ(fused.unbalanced_torque_ratio, traversed.unbalanced_torque_ratio);
+    EXPECT_EQ(fused.kinetic_energy, traversed.kinetic_energy);
+    EXPECT_EQ(fused.elastic_energy, traversed.elastic_energy);
+    EXPECT_EQ(fused.mean_normal_stiffness, traversed.mean_normal_stiffness);
+  }
+}
+
 TEST(Equilibrium, RelaxationAfterLoadingMeetsTheTolerancesAndGivesTheControlBack) {
   const DemConfig config = test::small_config(150, 5);
   Simulation simulation = loaded_for_3000_steps(config);

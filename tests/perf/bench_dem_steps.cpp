@@ -6,6 +6,7 @@
 // docs/performance.md records the results.
 //
 // usage: [mpiexec -n N] bench_dem_steps CHECKPOINT.h5 [STEPS=2000] [REPEATS=5] [hold|load]
+#include "common/cli.hpp"
 #include "common/h5/checkpoint.hpp"
 #include "dem/config.hpp"
 #include "dem/io/checkpoint.hpp"
@@ -20,9 +21,10 @@
 #include <string>
 #include <vector>
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_bench(int argc, char** argv, const aniso::mpi::Comm& /*world*/) {
   using namespace aniso;
-  mpi::Environment environment(argc, argv);
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s CHECKPOINT.h5 [STEPS] [REPEATS]\n", argv[0]);
     return 2;
@@ -64,4 +66,11 @@ int main(int argc, char** argv) {
       seconds.front(), seconds.back(), n_particles * static_cast<double>(n_steps) / median,
       contacts * static_cast<double>(n_steps) / median);
   return 0;
+}
+
+} // namespace
+
+// A missing or unreadable checkpoint ends with a message and an exit code, not an abort.
+int main(int argc, char** argv) {
+  return aniso::cli::run(argc, argv, "bench_dem_steps", run_bench);
 }
