@@ -48,13 +48,21 @@ std::vector<TimingRow> timing_rows(const SectionTimes& times, double wall_second
   return rows;
 }
 
+std::string wall_time_line(double wall_seconds, int n_ranks) {
+  return fmt::format("timing: {:.3f} s wall on {} rank(s)", wall_seconds, n_ranks);
+}
+
+double seconds_since(SectionTimes::Clock::time_point start) {
+  return std::chrono::duration<double>(SectionTimes::Clock::now() - start).count();
+}
+
 std::vector<std::string> format_timing_table(const std::vector<TimingRow>& rows, double wall_seconds,
                                              int n_ranks) {
   std::size_t width = 7;
   for (const TimingRow& row : rows)
     width = std::max(width, row.name.size());
   std::vector<std::string> lines;
-  lines.push_back(fmt::format("timing: {:.3f} s wall on {} rank(s)", wall_seconds, n_ranks));
+  lines.push_back(wall_time_line(wall_seconds, n_ranks));
   lines.push_back(fmt::format("  {:<{}} {:>10} {:>10} {:>10} {:>7} {:>12}", "section", width, "min [s]",
                               "avg [s]", "max [s]", "%total", "calls"));
   for (const TimingRow& row : rows)

@@ -69,6 +69,13 @@ struct TimingRow {
 /// holds (collective). `wall_seconds` is this rank's wall time of the whole run.
 std::vector<TimingRow> timing_rows(const SectionTimes& times, double wall_seconds, const mpi::Comm& comm);
 
+/// "timing: W s wall on N rank(s)": the line every program logs at the end of a run, alone or as
+/// the head of its timing table; a campaign's stage times are read from it (paper_export.py).
+std::string wall_time_line(double wall_seconds, int n_ranks);
+
+/// Seconds since `start` on the clock of SectionTimes.
+double seconds_since(SectionTimes::Clock::time_point start);
+
 /// The table as aligned text lines, headed by the run's wall time.
 std::vector<std::string> format_timing_table(const std::vector<TimingRow>& rows, double wall_seconds,
                                              int n_ranks);

@@ -25,10 +25,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 h5::Provenance provenance_of(const CommandContext& context, const std::string& subcommand) {
   return h5::make_provenance("aniso-dem " + subcommand, context.reader.effective_toml(), context.command_line,
                              context.comm);

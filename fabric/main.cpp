@@ -8,6 +8,7 @@
 #include "common/h5/checkpoint.hpp"
 #include "common/h5/content_hash.hpp"
 #include "common/output_folder.hpp"
+#include "common/timer.hpp"
 #include "fabric/config.hpp"
 #include "fabric/measures.hpp"
 #include "fabric/output.hpp"
@@ -119,6 +120,7 @@ int run_fabric(int argc, char** argv, const mpi::Comm& comm) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   logger->info("done: {} checkpoints in {:.2f} s", measures.size(), seconds);
+  logger->info(wall_time_line(seconds, comm.size()));
   return 0;
 }
 

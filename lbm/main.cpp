@@ -5,6 +5,7 @@
 #include "common/h5/image.hpp"
 #include "common/output_folder.hpp"
 #include "common/stop_request.hpp"
+#include "common/timer.hpp"
 #include "lbm/config.hpp"
 #include "lbm/force_choice.hpp"
 #include "lbm/io.hpp"
@@ -66,6 +67,7 @@ int collect_directions(const std::string& input, const aniso::lbm::LbmConfig& co
 
 int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
   using namespace aniso;
+  const auto start = SectionTimes::Clock::now();
   CLI::App app{"aniso-lbm: permeability tensor of a voxel image by D3Q19 TRT lattice Boltzmann "
                "(Kuhn, Sun & Wang 2015, section 6)"};
   cli::CommonOptions options;
@@ -133,6 +135,7 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
       logger->info("wrote {}", direction_file);
     }
     comm.barrier();
+    logger->info(wall_time_line(seconds_since(start), comm.size()));
     return 0;
   }
   // Velocity fields are not kept in direction files: with them every direction runs each time.
@@ -166,6 +169,7 @@ int run_lbm(int argc, char** argv, const aniso::mpi::Comm& comm) {
     }
   }
   comm.barrier();
+  logger->info(wall_time_line(seconds_since(start), comm.size()));
   return 0;
 }
 

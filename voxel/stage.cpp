@@ -7,6 +7,7 @@
 #include "common/h5/image.hpp"
 #include "common/memory.hpp"
 #include "common/output_folder.hpp"
+#include "common/timer.hpp"
 #include "voxel/config.hpp"
 #include "voxel/digitize.hpp"
 #include "voxel/void_analysis.hpp"
@@ -25,13 +26,10 @@ namespace {
 
 constexpr double bytes_per_voxel = 21;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 } // namespace
 
 int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
+  const auto run_start = SectionTimes::Clock::now();
   CLI::App app{
       "aniso-voxel: digitize a checkpoint and measure the void space by ball, spar and disk openings "
       "(Kuhn, Sun & Wang 2015, section 3)"};
@@ -131,6 +129,7 @@ int run_voxel_stage(int argc, char** argv, const mpi::Comm& comm) {
       "RSS {:.0f} MiB (rank 0)",
       results, config.write_image ? " and " + image_path : "", digitize_seconds, analysis_seconds,
       comm.size(), omp_get_max_threads(), static_cast<double>(peak_resident_bytes()) / 1048576.0);
+  logger->info(wall_time_line(seconds_since(run_start), comm.size()));
   return 0;
 }
 

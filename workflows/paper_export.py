@@ -15,7 +15,11 @@ EXPORT/NAME/:
   voids.csv, void_curves.csv, permeability.csv   the void and permeability series (plots/voids.py csv)
   prepare.log                      the preparation's log (e against compaction cycle: studies/chart_prepare_cycles.py)
   stage_times.csv                  per stage run of the campaign: wall seconds and ranks, from the
-                                   stage's own timing line in its log (logs/<stage>.log)
+                                   stage's own timing line in its log (logs/<stage>.log; source
+                                   "timing"; runs: the timing lines summed), or for programs that
+                                   did not log one yet from its lines' time stamps (source "stamps",
+                                   no ranks; runs: the stretches summed, a pause of more than 10
+                                   minutes, a stopped or killed process, ending one)
 and EXPORT/comparison.md and EXPORT/figures/ from PAPER_OUT (paper_report.py's output).
 Files of an earlier export that this run does not make are left alone; every file it makes is replaced.
 
@@ -36,6 +40,8 @@ sys.path.insert(0, os.path.join(HERE, "plots"))
 from voids import csv_files  # noqa: E402
 
 TIMING = re.compile(r"info timing: ([0-9.eE+-]+) s wall on (\d+) rank")
+STAMP = re.compile(r"^\[[^\]]+\] \[(\d\d):(\d\d):(\d\d)\]", re.MULTILINE)
+STAMP_GAP = 600  # seconds without a log line that end a run, for stamped_seconds
 
 
 def fail(message):
@@ -86,16 +92,38 @@ def static_states(run, target):
                         "unbalanced_force_ratio"], rows)
 
 
+def stamped_seconds(text, gap=STAMP_GAP):
+    """Wall seconds that a log without timing lines spans, from its lines' [HH:MM:SS] stamps: the
+    spans of its runs summed, a run ending where the stamps stop for more than `gap` seconds (a
+    killed run and its rerun, a stopped process), a day added where the clock wraps. Returns
+    (seconds, runs), or None without stamps."""
+    stamps = [3600 * int(h) + 60 * int(m) + int(s) for h, m, s in STAMP.findall(text)]
+    if not stamps:
+        return None
+    total, runs, first, last = 0, 1, stamps[0], stamps[0]
+    for stamp in stamps[1:]:
+        step = (stamp - last) % 86400
+        if step > gap:
+            total, runs, first = total + (last - first) % 86400, runs + 1, stamp
+        last = stamp
+    return total + (last - first) % 86400, runs
+
+
 def stage_times(run, target):
     rows = []
     for path in sorted(glob.glob(os.path.join(run, "logs", "*.log"))):
         with open(path, errors="replace") as f:
-            found = TIMING.findall(f.read())
+            text = f.read()
+        found = TIMING.findall(text)
+        stage = os.path.basename(path)[:-4]
         # a stage resumed after a kill logs one timing line per run: their sum is its wall time
         if found:
-            rows.append([os.path.basename(path)[:-4], f"{sum(float(w) for w, _ in found):.1f}",
-                         max(int(r) for _, r in found), len(found)])
-    write_rows(target, ["stage", "wall_seconds", "ranks", "runs"], rows)
+            rows.append([stage, f"{sum(float(w) for w, _ in found):.1f}", max(int(r) for _, r in found),
+                         len(found), "timing"])
+        elif (stamped := stamped_seconds(text)) is not None:
+            # programs built before aniso-voxel, -lbm and -fabric logged a timing line (2026-12-07)
+            rows.append([stage, f"{stamped[0]:.1f}", "", stamped[1], "stamps"])
+    write_rows(target, ["stage", "wall_seconds", "ranks", "runs", "source"], rows)
 
 
 def export_run(name, run, folder):

@@ -90,8 +90,13 @@ for shape in ("spheres", "ovoids-0.5"):
             a = f.attrs
             assert int(row["relaxation_steps"]) == int(a["step"]) - int(a["relaxed_copy_of_step"]), row
             assert int(row["static_verified"]) == int(a["static_verified"]), row
-    stages = {r["stage"]: float(r["wall_seconds"]) for r in csv.DictReader(open(f"{export}/{shape}/stage_times.csv"))}
+    rows = list(csv.DictReader(open(f"{export}/{shape}/stage_times.csv")))
+    stages = {r["stage"]: float(r["wall_seconds"]) for r in rows}
     assert {"prepare", "load"} <= set(stages) and all(t >= 0 for t in stages.values()), stages
+    # every program logs its wall time: the fabric, voxel and LBM stages too, not only DEM and probes
+    for prefix in ("fabric", "probe_load_", "voxel_load_", "lbm_load_"):
+        timed = [r for r in rows if r["stage"].startswith(prefix) and r["source"] == "timing"]
+        assert timed, (prefix, rows)
 print("paper e2e: export checked")
 PY
 

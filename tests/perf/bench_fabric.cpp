@@ -4,6 +4,7 @@
 //
 // usage: bench_fabric CHECKPOINT.h5 [REPEATS=9]
 #include "common/h5/checkpoint.hpp"
+#include "common/timer.hpp"
 #include "fabric/measures.hpp"
 
 #include <algorithm>
@@ -17,10 +18,6 @@ namespace {
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 } // namespace

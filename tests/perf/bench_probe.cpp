@@ -6,6 +6,7 @@
 // usage: [mpiexec -n N] bench_probe CHECKPOINT.h5 [REPEATS=5]
 #include "common/h5/checkpoint.hpp"
 #include "common/log.hpp"
+#include "common/timer.hpp"
 #include "dem/config.hpp"
 #include "dem/io/checkpoint.hpp"
 #include "dem/protocol/load.hpp"
@@ -22,10 +23,6 @@ namespace {
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 } // namespace
