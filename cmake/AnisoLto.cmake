@@ -5,7 +5,8 @@
 # The five stage programs and the benchmarks link with -flto and optimise across files (the DEM
 # force pass then inlines the contact law and the exact sums, which live in other files: the step
 # 4% faster, the same bits). The tests link the machine code, so the suite's hundred links do not
-# each pay for a whole-program optimisation. GCC, Release builds only; off: -DANISO_LTO=OFF.
+# each pay for a whole-program optimisation, and the benchmarks are built only on request
+# (tests/perf). GCC, Release builds only; off: -DANISO_LTO=OFF.
 option(ANISO_LTO "Link-time optimisation of the stage programs and benchmarks (GCC, Release)" ON)
 set(ANISO_LTO_ACTIVE OFF)
 if(ANISO_LTO AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")

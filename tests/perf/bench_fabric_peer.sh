@@ -9,6 +9,7 @@
 # usage: bench_fabric_peer.sh CHECKPOINT.h5 BUILD_DIR WORK_DIR [REPEATS=7]
 set -eu
 checkpoint=$1 build=$2 work=$3 repeats=${4:-7}
+[[ -x $build/tests/perf/bench_fabric ]] || { echo "missing $build/tests/perf/bench_fabric: cmake --build $build --target benchmarks" >&2; exit 2; }
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$work"
 command -v lmp > /dev/null || { echo "installing lammps (apt-get)" >&2; DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends lammps > /dev/null; }

@@ -7,6 +7,7 @@
 # usage: tests/perf/bench_voxel.sh BUILD_DIR CHECKPOINT.h5 OUT_DIR [TILES="6 6 3"]
 set -euo pipefail
 build=$1 checkpoint=$2 out=$3 tiles=${4:-"6 6 3"}
+[[ -x $build/tests/perf/bench_voxel ]] || { echo "missing $build/tests/perf/bench_voxel: cmake --build $build --target benchmarks" >&2; exit 2; }
 mkdir -p "$out"
 stem=$(basename "$checkpoint" .h5)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

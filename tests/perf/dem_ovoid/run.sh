@@ -16,6 +16,7 @@ repeats=${3:-5}
 work=${4:-/tmp/aniso-dem-ovoid}
 here=$(cd "$(dirname "$0")" && pwd)
 build=${ANISO_BUILD:-$here/../../../build}
+[[ -x $build/tests/perf/bench_dem_steps ]] || { echo "missing $build/tests/perf/bench_dem_steps: cmake --build $build --target benchmarks" >&2; exit 2; }
 ranks=${RANKS:-1}
 mode=${MODE:-load}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

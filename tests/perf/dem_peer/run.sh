@@ -35,7 +35,7 @@ python=/usr/bin/python3
 bench=$build/tests/perf/bench_dem_steps
 
 [[ -f $checkpoint ]] || { echo "no checkpoint $checkpoint" >&2; exit 2; }
-[[ -x $bench ]] || { echo "missing $bench: cmake --build $build --target bench_dem_steps" >&2; exit 2; }
+[[ -x $bench ]] || { echo "missing $bench: cmake --build $build --target benchmarks" >&2; exit 2; }
 for package in liggghts lammps; do
   binary=$([[ $package == lammps ]] && echo lmp || echo liggghts)
   if ! command -v $binary > /dev/null; then

@@ -16,6 +16,7 @@ steps=${2:-100}
 repeats=${3:-5}
 work=${4:-/tmp/aniso-lbm-peer}
 build=${ANISO_BUILD:-/work/build}
+[[ -x $build/tests/perf/bench_lbm ]] || { echo "missing $build/tests/perf/bench_lbm: cmake --build $build --target benchmarks" >&2; exit 2; }
 ranks_list=${PEER_RANKS:-"1 2"}
 precision=${PRECISION:-double}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
