@@ -40,9 +40,17 @@ LbmConfig read_lbm_config(config::Reader& reader) {
       reader.real("lbm.target_reynolds", 0.05, "1", Range::open_closed(0.0, 1.0),
                   "permeability Reynolds number |<j>| sqrt(K) / nu the automatic force aims at "
                   "(inertia biases K by about -2e-3 Re^2)");
-  f.tolerance = reader.real("lbm.convergence.tolerance", 1e-5, "1", Range::open(0.0, 1.0),
-                            "converged when the mean velocity changes by less than this fraction per check "
-                            "interval");
+  f.criterion = reader.choice("lbm.convergence.criterion", "error", {"error", "change"},
+                              "error: stop when the relative error of the mean velocity that its decay "
+                              "leaves is below the tolerance; change: when it changes by less than the "
+                              "tolerance per check interval (docs/methods/lbm.md)") == "change"
+                    ? StopCriterion::change
+                    : StopCriterion::error;
+  f.tolerance = reader.real("lbm.convergence.tolerance", f.criterion == StopCriterion::error ? 1e-4 : 1e-5,
+                            "1", Range::open(0.0, 1.0),
+                            "the error criterion's bound on the estimated relative error of the mean "
+                            "velocity (default 1e-4), or the change criterion's on its relative change per "
+                            "check interval (default 1e-5)");
   f.check_interval =
       reader.integer("lbm.convergence.check_interval", 100, Range::closed(2, 1e6),
                      "steps between convergence and divergence checks (each check averages the "

@@ -187,11 +187,12 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   const auto n_fluid = static_cast<double>(topology.n_fluid_global);
 
   FlowResult result;
-  // Progress in decades of the relative change, towards the tolerance: the flux converges about
-  // exponentially, so decades come at a steady pace and the ETA holds (the LBM printed
-  // nothing for minutes).
+  // Progress in decades of what the tolerance is compared with (the estimated error, or the
+  // change until a steady decay gives an estimate): the flux converges about exponentially, so
+  // decades come at a steady pace and the ETA holds (the LBM printed nothing for minutes).
   const double decades_to_go = -std::log10(s.tolerance);
   Progress progress(logger, s.label, decades_to_go, 30.0);
+  ConvergenceTest convergence(s.criterion, s.tolerance);
   Vec3 previous = Vec3::Zero();
   bool have_previous = false;
   double peak = 0; // largest |<j>| of the run's checks
@@ -249,23 +250,28 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
           s.label, step, mean.norm() / peak, peak_step));
     logger->debug("{}: step {}: <j> = ({:.6e}, {:.6e}, {:.6e}), relative change {:.3e}, Mach {:.3e}", s.label,
                   step, mean[0], mean[1], mean[2], change, mach);
+    const bool converged = have_previous && convergence.converged_after(change) && !s.fixed_steps;
+    const double towards = std::isfinite(convergence.measure()) ? convergence.measure() : change;
     if (have_previous && !s.fixed_steps &&
-        progress.update(std::clamp(-std::log10(std::max(change, 1e-300)), 0.0, decades_to_go)))
-      logger->info("{}: step {}, <j> changes by {:.2e} per {} steps (converged at {:.1e})", s.label, step,
-                   change, s.check_interval, s.tolerance);
-    const bool converged = have_previous && change <= s.tolerance && !s.fixed_steps;
+        progress.update(std::clamp(-std::log10(std::max(towards, 1e-300)), 0.0, decades_to_go)))
+      logger->info("{}: step {}, <j> changes by {:.2e} per {} steps, error left {:.1e} ({} criterion, "
+                   "converged at {:.1e})",
+                   s.label, step, change, s.check_interval, convergence.estimated_error(),
+                   stop_criterion_name(s.criterion), s.tolerance);
     have_previous = true;
     if (converged || step + s.check_interval > s.max_steps) {
       if (!converged && !s.fixed_steps)
         throw ConvergenceError(fmt::format(
             "{}: not converged after {} steps (lbm.max_steps): the mean velocity still changes by {:.3g} per "
-            "{} "
-            "steps, above lbm.convergence.tolerance = {:.3g}. Raise lbm.max_steps or loosen the tolerance; a "
-            "pore space that does not percolate along the force never converges",
-            s.label, step, change, s.check_interval, s.tolerance));
+            "{} steps (estimated error left {:.3g}), above lbm.convergence.tolerance = {:.3g} on the {}. "
+            "Raise lbm.max_steps or loosen the tolerance; a pore space that does not percolate along the "
+            "force never converges",
+            s.label, step, change, s.check_interval, convergence.estimated_error(), s.tolerance,
+            s.criterion == StopCriterion::error ? "estimated error" : "change"));
       result.mean_momentum = mean;
       result.steps = step;
       result.relative_change = change;
+      result.estimated_error = convergence.estimated_error();
       result.max_mach = mach;
       result.reynolds = permeability_reynolds(mean.norm(), s.force.norm(), s.viscosity());
       result.mass_drift = drift;

@@ -6,8 +6,9 @@
 // over all voxels) is reduced exactly, as the mean of two consecutive steps (a
 // node whose every link along the force ends in solid flips its momentum every
 // step and never damps; the mean removes it); the run has converged when
-// |J(t) - J(t - check_interval)| <= tolerance |J(t)|. The result's fields are the
-// same two-step means.
+// |J(t) - J(t - check_interval)| <= tolerance |J(t)| (StopCriterion::change) or the
+// error left in J that the changes estimate is (StopCriterion::error, lbm/convergence.hpp).
+// The result's fields are the same two-step means.
 // Divergence: non-finite populations, a Mach number max|u|/c_s above
 // max_mach, or a drift of the mean density above mass_drift stop the run
 // with NumericalError naming the cause and the remedy. Reaching max_steps
@@ -18,6 +19,7 @@
 #include "common/log.hpp"
 #include "common/mpi.hpp"
 #include "common/tensor.hpp"
+#include "lbm/convergence.hpp"
 #include "lbm/topology.hpp"
 
 #include <cstdint>
@@ -33,7 +35,8 @@ struct FlowSettings {
   double magic = 3.0 / 16.0; ///< TRT magic parameter Lambda
   Vec3 force = Vec3::Zero(); ///< body force density on the fluid [lattice units]
   Precision precision = Precision::float64;
-  double tolerance = 1e-6;           ///< relative change of J over one check interval
+  StopCriterion criterion = StopCriterion::change;
+  double tolerance = 1e-6;           ///< on the relative change of J per check, or its estimated error
   std::int64_t check_interval = 100; ///< steps between checks
   std::int64_t max_steps = 200000;
   double max_mach = 0.1;
@@ -50,6 +53,7 @@ struct FlowResult {
   Vec3 pressure_gradient = Vec3::Zero(); ///< mean dp/dx along wall-bounded axes (0 along periodic ones)
   std::int64_t steps = 0;
   double relative_change = 0;
+  double estimated_error = 0; ///< relative error of J left at the stop (infinite: no steady decay seen)
   double max_mach = 0;
   /// Permeability Reynolds number |<j>| sqrt(K) / nu with K = nu |<j>| / |F| (Darcy velocity and
   /// sqrt(K) as length): inertia biases K by about -2e-3 Re^2 (docs/methods/lbm.md).

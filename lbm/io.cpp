@@ -61,6 +61,7 @@ void write_common(h5::Group& group, const h5::VoxelImage& image, const Permeabil
   group.write_attribute("precision", std::string_view(precision_name(settings.flow.precision)));
   group.write_attribute("body_force", settings.body_force);
   group.write_attribute("tolerance", settings.flow.tolerance);
+  group.write_attribute("convergence_criterion", stop_criterion_name(settings.flow.criterion));
 }
 
 std::int64_t walls_code(FaceKind walls) {
@@ -69,7 +70,7 @@ std::int64_t walls_code(FaceKind walls) {
 
 void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
   std::vector<std::int64_t> axis, walls, steps;
-  std::vector<double> momentum, gradient, seconds, reynolds, throat;
+  std::vector<double> momentum, gradient, seconds, reynolds, throat, error;
   std::vector<std::uint8_t> crosses;
   std::string names;
   for (const FlowRun& run : runs) {
@@ -80,6 +81,7 @@ void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
     steps.push_back(run.result.steps);
     seconds.push_back(run.result.seconds);
     reynolds.push_back(run.result.reynolds);
+    error.push_back(run.result.estimated_error);
     for (Eigen::Index a = 0; a < 3; ++a) {
       momentum.push_back(run.result.mean_momentum[a]);
       gradient.push_back(run.result.pressure_gradient[a]);
@@ -97,6 +99,10 @@ void write_runs(h5::Group& group, const std::vector<FlowRun>& runs) {
   group_runs.write_dataset<double>("seconds", seconds, {n_runs}, "s", "wall time of the run");
   group_runs.write_dataset<double>("reynolds", reynolds, {n_runs}, "1",
                                    "permeability Reynolds number |<j>| sqrt(K) / nu, K = nu |<j>| / |F|");
+  group_runs.write_dataset<double>(
+      "estimated_error", error, {n_runs}, "1",
+      "relative error of <j> left at the stop, estimated from the decay of its "
+      "changes (inf: no steady decay seen; NaN: written before it was recorded)");
   group_runs.write_dataset<double>(
       "throat_width", throat, {n_runs}, "voxel",
       "narrowest throat along the run's axis: 2 r - 1 for the largest r such that "
@@ -194,6 +200,13 @@ DirectionFile read_direction(const std::string& path) {
   d.settings.flow.magic = group.read_attribute<double>("magic");
   d.settings.body_force = group.read_attribute<double>("body_force");
   d.settings.flow.tolerance = group.read_attribute<double>("tolerance");
+  // Files from before the error criterion stopped on the change.
+  const std::string criterion = group.has_attribute("convergence_criterion")
+                                    ? group.read_string_attribute("convergence_criterion")
+                                    : std::string(stop_criterion_name(StopCriterion::change));
+  if (criterion != "error" && criterion != "change")
+    group.fail(fmt::format("convergence_criterion '{}' is not 'error' or 'change'", criterion));
+  d.settings.flow.criterion = criterion == "error" ? StopCriterion::error : StopCriterion::change;
   const std::string precision = group.read_string_attribute("precision");
   if (precision != "float" && precision != "double")
     group.fail(fmt::format("precision '{}' is not 'float' or 'double'", precision));
@@ -213,6 +226,8 @@ DirectionFile read_direction(const std::string& path) {
   const auto steps = runs.read_dataset<std::int64_t>("steps", {n});
   const auto seconds = runs.read_dataset<double>("seconds", {n});
   const auto reynolds = runs.read_dataset<double>("reynolds", {n});
+  const auto error = runs.has_child("estimated_error") ? runs.read_dataset<double>("estimated_error", {n})
+                                                       : std::vector<double>(n, std::nan(""));
   const auto throat = runs.read_dataset<double>("throat_width", {n});
   const auto crosses = runs.read_dataset<std::uint8_t>("percolates", {n});
   const auto momentum = runs.read_dataset<double>("mean_momentum", {n, 3});
@@ -228,6 +243,7 @@ DirectionFile read_direction(const std::string& path) {
     run.result.steps = steps[r];
     run.result.seconds = seconds[r];
     run.result.reynolds = reynolds[r];
+    run.result.estimated_error = error[r];
     run.throat_width = throat[r];
     run.percolates = crosses[r] != 0;
     for (std::size_t a = 0; a < 3; ++a) {

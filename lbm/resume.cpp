@@ -49,6 +49,7 @@ std::string differing_settings(const DirectionFile& file, const DirectionFile& r
       {"body force", d.settings.body_force == r.settings.body_force},
       {"precision", d.settings.flow.precision == r.settings.flow.precision},
       {"convergence tolerance", d.settings.flow.tolerance == r.settings.flow.tolerance},
+      {"convergence criterion", d.settings.flow.criterion == r.settings.flow.criterion},
       {"voxel size", d.image.voxel_size == r.image.voxel_size},
       {"source hash", d.image.source_hash == r.image.source_hash},
       {"porosity", d.porosity == r.porosity && d.fluid_voxels == r.fluid_voxels},

@@ -45,6 +45,28 @@ TEST(Flow, PermeabilityIndependentOfTauWithinOnePercent) {
   }
 }
 
+TEST(Flow, TheErrorCriterionBoundsTheErrorOfK) {
+  // The stop of lbm/convergence.hpp: K stopped at an estimated error of 1e-4 lies within that
+  // bound (plus the estimate's own few per cent) of K converged 1e5 times further, and the
+  // estimate the run records is that error's size.
+  const int side = 16;
+  const h5::VoxelImage image = sphere_array(side, sphere_radius_for_solid_fraction(side, 0.25));
+  PermeabilitySettings settings = converged_settings();
+  settings.flow.tau = 0.6;
+  settings.flow.tolerance = 1e-10;
+  const double reference = axis_permeability(image, settings);
+  settings.flow.criterion = StopCriterion::error;
+  settings.flow.tolerance = 1e-4;
+  const FlowRun run = run_axis(image, settings, 0, FaceKind::periodic, world, make_silent_logger());
+  const double k = settings.flow.viscosity() * run.result.mean_momentum[0] / settings.body_force;
+  const double error = std::abs(k / reference - 1);
+  std::cout << "steps " << run.result.steps << ", error " << error << ", estimated "
+            << run.result.estimated_error << "\n";
+  EXPECT_LE(error, 1.2e-4);
+  EXPECT_GT(error, 0.9 * run.result.estimated_error);
+  EXPECT_LT(error, 1.1 * run.result.estimated_error);
+}
+
 /// A plane channel along x1 (fluid 0 <= x2 < 6 of 12) with a dead-end groove one voxel wide in x1
 /// and `depth` deep cut into its wall. Below its mouth, the groove's nodes have solid at the end of
 /// every link with a component along the force (the blocked-node oscillation).

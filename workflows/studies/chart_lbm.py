@@ -48,7 +48,7 @@ def run(build, work, diameter, precision, tolerance):
     result = os.path.join(out, f"permeability_cell_{side}.h5")
     run_cached([stage(build, "lbm"), "--input", image,
                 *settings_arguments([f'lbm.output_dir="{out}"', f'lbm.precision="{precision}"',
-                                     f"lbm.convergence.tolerance={tolerance}", "lbm.tau=1.0", "lbm.body_force=1e-6"])],
+                                     'lbm.convergence.criterion="change"', f"lbm.convergence.tolerance={tolerance}", "lbm.tau=1.0", "lbm.body_force=1e-6"])],
                out, outputs=[result])
     g = read_permeability(result)
     k11 = g["K_lattice"][0, 0]

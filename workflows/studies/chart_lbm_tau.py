@@ -64,6 +64,7 @@ def run(build, work, case, tau, tolerance):
     launcher = ["mpiexec", "--oversubscribe", "-n", ranks] if ranks != "1" else []
     run_cached([*launcher, stage(build, "lbm"), "--input", image, "--direction", "0",
                 *settings_arguments([f'lbm.output_dir="{out}"', f"lbm.tau={tau}",
+                                     'lbm.convergence.criterion="change"',
                                      f"lbm.convergence.tolerance={tolerance}", "lbm.max_steps=2000000"])],
                out, outputs=[result])
     g = read_permeability(result)

@@ -37,7 +37,7 @@ def run(build, work, phi, side):
     stem = os.path.splitext(os.path.basename(image))[0]
     result = os.path.join(out, f"permeability_{stem}_direction0.h5")
     run_cached([stage(build, "lbm"), "--input", image, "--direction", "0",
-                *settings_arguments([f'lbm.output_dir="{out}"', "lbm.convergence.tolerance=1e-6", "lbm.tau=1.0",
+                *settings_arguments([f'lbm.output_dir="{out}"', "lbm.convergence.criterion=\"change\"", "lbm.convergence.tolerance=1e-6", "lbm.tau=1.0",
                                      "lbm.body_force=1e-6"])], out, outputs=[result])
     runs = read_permeability(result)["runs"]
     momentum = float(runs["mean_momentum"][0, 0])

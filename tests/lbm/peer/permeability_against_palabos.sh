@@ -28,7 +28,7 @@ echo "image $image: ${n1}x${n2}x${n3}; tau $tau; $(date -u +%FT%TZ); load averag
 for axis in $axes; do
   rm -rf "$work/aniso_$axis"
   "$build/lbm/aniso-lbm" --input "$image" --direction "$axis" --set "lbm.output_dir=\"$work/aniso_$axis\"" \
-    --set lbm.tau="$tau" --set lbm.convergence.tolerance="$tolerance" --set lbm.max_steps="$max_steps" \
+    --set lbm.tau="$tau" --set lbm.convergence.criterion='"change"' --set lbm.convergence.tolerance="$tolerance" --set lbm.max_steps="$max_steps" \
     > "$work/aniso_$axis.log" 2>&1 || { echo "aniso-lbm failed: $work/aniso_$axis.log" >&2; exit 1; }
   # aniso's K_ii = nu <j_i> / F from its direction file, and its force for Palabos
   read -r k_aniso force steps < <(/usr/bin/python3 - "$work/aniso_$axis" "$axis" <<'PY'
