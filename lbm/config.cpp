@@ -22,6 +22,13 @@ LbmConfig read_lbm_config(config::Reader& reader) {
                               "floating-point type of the populations and the collision") == "float"
                     ? Precision::float32
                     : Precision::float64;
+  const std::string level = reader.choice(
+      "lbm.instruction_set", "auto", {"auto", "baseline", "x86-64-v3", "x86-64-v4"},
+      "x86-64 level of the step: auto picks the best this CPU runs; every level gives the same bits");
+  f.instruction_set = level == "baseline"    ? InstructionSet::baseline
+                      : level == "x86-64-v3" ? InstructionSet::x86_64_v3
+                      : level == "x86-64-v4" ? InstructionSet::x86_64_v4
+                                             : InstructionSet::automatic;
   f.tau =
       reader.real("lbm.tau", 0.0, "1", Range::closed(0.0, 10.0),
                   "TRT relaxation time of the symmetric moments, in (1/2, 10]; viscosity nu = (tau - 1/2)/3; "

@@ -37,6 +37,9 @@ inline constexpr std::array<double, q> w{1.0 / 3.0,  1.0 / 18.0, 1.0 / 18.0, 1.0
                                          1.0 / 36.0, 1.0 / 36.0, 1.0 / 36.0, 1.0 / 36.0, 1.0 / 36.0,
                                          1.0 / 36.0, 1.0 / 36.0, 1.0 / 36.0, 1.0 / 36.0};
 
+// Internal linkage, as the kernels that call them (lbm/stream_collide.hpp).
+namespace {
+
 /// Index of the velocity -c[i].
 constexpr int opposite(int i) {
   return i == 0 ? 0 : (i % 2 == 1 ? i + 1 : i - 1);
@@ -52,4 +55,5 @@ constexpr int mirrored(int i, const std::array<bool, 3>& flip) {
   return -1; // unreachable: the velocity set is closed under reflections
 }
 
+} // namespace
 } // namespace aniso::lbm::d3q19

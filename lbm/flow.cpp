@@ -5,7 +5,6 @@
 #include "common/stop_request.hpp"
 #include "lbm/halo.hpp"
 #include "lbm/petsc_log.hpp"
-#include "lbm/stream_collide.hpp"
 #include "lbm/trt.hpp"
 
 #include <fmt/format.h>
@@ -170,6 +169,11 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
   ScopedStage stage(events, events.time_loop);
   const auto start = std::chrono::steady_clock::now();
   const TrtRates rates = make_trt_rates(s.tau, s.magic);
+  const InstructionSet level = resolve_instruction_set(s.instruction_set);
+  const StepKernel<Real> step_only = step_kernels(level).template step<Real>(false);
+  const StepKernel<Real> measured_step = step_kernels(level).template step<Real>(true);
+  logger->info("{}: the step runs at the {} instruction-set level (lbm.instruction_set)", s.label,
+               instruction_set_name(level));
   const std::array<Real, 3> force{Real(s.force[0]), Real(s.force[1]), Real(s.force[2])};
   // Rest state, delta rho = 0, u = 0: all shifted populations are zero, so the array is in the layout of
   // either kind of step. One array, updated in place (lbm/topology.hpp).
@@ -210,13 +214,10 @@ FlowResult run_typed(const Topology& topology, const FlowSettings& s, const mpi:
     const bool measure = check || before_check;
     {
       ScopedEvent event(events, events.stream_collide);
-      if (measure)
-        stream_collide<Real, true>(parity, f.data(), topology.slot.data(), topology.n_fluid, topology.stride,
-                                   force, Real(rates.omega_plus), Real(rates.omega_minus),
-                                   check ? moments.data() : moments_before.data());
-      else
-        stream_collide<Real, false>(parity, f.data(), topology.slot.data(), topology.n_fluid, topology.stride,
-                                    force, Real(rates.omega_plus), Real(rates.omega_minus), nullptr);
+      (measure ? measured_step
+               : step_only)(parity, f.data(), topology.slot.data(), topology.n_fluid, topology.stride, force,
+                            Real(rates.omega_plus), Real(rates.omega_minus),
+                            measure ? (check ? moments.data() : moments_before.data()) : nullptr);
     }
     if (parity == Parity::odd) {
       ScopedEvent event(events, events.halo);

@@ -20,6 +20,7 @@
 #include "common/mpi.hpp"
 #include "common/tensor.hpp"
 #include "lbm/convergence.hpp"
+#include "lbm/step_kernels.hpp"
 #include "lbm/topology.hpp"
 
 #include <cstdint>
@@ -35,6 +36,7 @@ struct FlowSettings {
   double magic = 3.0 / 16.0; ///< TRT magic parameter Lambda
   Vec3 force = Vec3::Zero(); ///< body force density on the fluid [lattice units]
   Precision precision = Precision::float64;
+  InstructionSet instruction_set = InstructionSet::automatic; ///< of the step (same bits at every level)
   StopCriterion criterion = StopCriterion::change;
   double tolerance = 1e-6;           ///< on the relative change of J per check, or its estimated error
   std::int64_t check_interval = 100; ///< steps between checks

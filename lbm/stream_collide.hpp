@@ -25,6 +25,11 @@ inline constexpr int block_width = 8;
 /// Which of the two alternating steps.
 enum class Parity { even, odd };
 
+// The kernels below (and trt.hpp's collision) have internal linkage: lbm/step_kernels_*.cpp compile
+// them for different instruction sets into one binary, and the inline linkage of a template would
+// let the linker keep one of those copies for every caller (an AVX-512 copy on a CPU without it).
+namespace {
+
 template <class Real, int W, bool Measure>
 inline void record_moments(const NodeBlock<Real, W>& block, std::size_t first, MomentsRecord* moments) {
   if constexpr (Measure) {
@@ -113,4 +118,5 @@ void stream_collide(Parity parity, Real* f, const std::uint32_t* slot, std::int6
   }
 }
 
+} // namespace
 } // namespace aniso::lbm

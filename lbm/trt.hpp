@@ -36,6 +36,9 @@ inline TrtRates make_trt_rates(double tau, double magic) {
 
 /// Populations of W nodes, population-major so that each statement of the collision is a loop over
 /// lanes that the compiler turns into SIMD instructions.
+// Internal linkage, as the kernels of stream_collide.hpp that use it (compiled per instruction set).
+namespace {
+
 template <class Real, int W> struct NodeBlock {
   Real g[d3q19::q][W]; ///< shifted populations, in: pre-collision, out: post-collision
   Real delta_rho[W];   ///< out: density deviation
@@ -113,4 +116,5 @@ inline void collide_trt(NodeBlock<Real, W>& block, const std::array<Real, 3>& fo
   }
 }
 
+} // namespace
 } // namespace aniso::lbm

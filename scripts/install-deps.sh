@@ -40,6 +40,8 @@ packages=(
   python3-skimage
   # a peer DEM code: the import test settles a packing with LIGGGHTS (tests/dem/peer/liggghts_import.sh)
   liggghts
+  # the LBM step's x86-64 levels checked on emulated CPUs without AVX-512 and AVX (tests/lbm)
+  qemu-user
   # ParaView reads the XDMF outputs: the e2e test renders one with pvpython, headless under Xvfb
   python3-paraview xvfb xauth libgl1-mesa-dri
 )

@@ -5,6 +5,7 @@
 #include "lbm/flow.hpp"
 #include "lbm/geometry.hpp"
 #include "lbm/topology.hpp"
+#include "tests/lbm/fixed_flow.hpp"
 #include "tests/lbm/petsc_environment.hpp"
 
 #include <gtest/gtest.h>
@@ -19,14 +20,7 @@ const mpi::Comm world = mpi::Comm::world();
 FlowResult run(const h5::VoxelImage& image, const Partition& partition, const Faces& faces,
                const mpi::Comm& comm, Precision precision) {
   const Topology topology = build_topology(image.phase, partition, faces, comm);
-  FlowSettings settings;
-  settings.force = Vec3(2e-5, 1e-5, -5e-6);
-  settings.precision = precision;
-  settings.fixed_steps = true;
-  settings.max_steps = 120;
-  settings.check_interval = 40;
-  settings.keep_velocity = true;
-  return run_flow(topology, settings, comm, make_silent_logger());
+  return run_flow(topology, fixed_flow_settings(precision), comm, make_silent_logger());
 }
 
 Index3 shape_of(const h5::VoxelImage& image) {

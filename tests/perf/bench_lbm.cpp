@@ -7,6 +7,7 @@
 //
 // usage: [mpiexec -n N] bench_lbm [--image IMAGE.h5 | --side N --radius R --solid-fraction PHI]
 //                                 [--steps S] [--repeats K] [--precision double|float]
+//                                 [--instruction-set auto|baseline|x86-64-v3|x86-64-v4]
 #include "common/error.hpp"
 #include "common/h5/image.hpp"
 #include "common/log.hpp"
@@ -22,6 +23,8 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace {
@@ -46,7 +49,8 @@ double triad_bandwidth(std::size_t n, int repeats) {
 } // namespace
 
 void run_benchmark(const std::string& image_path, int side, double radius, double phi, int steps, int repeats,
-                   const std::string& precision, const aniso::mpi::Comm& comm);
+                   const std::string& precision, aniso::lbm::InstructionSet level,
+                   const aniso::mpi::Comm& comm);
 
 int main(int argc, char** argv) {
   using namespace aniso;
@@ -65,9 +69,16 @@ int main(int argc, char** argv) {
   app.add_option("--steps", steps, "timed steps per repetition")->check(CLI::Range(1, 1000000));
   app.add_option("--repeats", repeats, "repetitions (median reported)")->check(CLI::Range(1, 100));
   app.add_option("--precision", precision, "double or float")->check(CLI::IsMember({"double", "float"}));
+  const std::map<std::string, lbm::InstructionSet> levels{{"auto", lbm::InstructionSet::automatic},
+                                                          {"baseline", lbm::InstructionSet::baseline},
+                                                          {"x86-64-v3", lbm::InstructionSet::x86_64_v3},
+                                                          {"x86-64-v4", lbm::InstructionSet::x86_64_v4}};
+  lbm::InstructionSet level = lbm::InstructionSet::automatic;
+  app.add_option("--instruction-set", level, "x86-64 level of the step (lbm.instruction_set)")
+      ->transform(CLI::CheckedTransformer(levels));
   CLI11_PARSE(app, argc, argv);
   try {
-    run_benchmark(image_path, side, radius, phi, steps, repeats, precision, comm);
+    run_benchmark(image_path, side, radius, phi, steps, repeats, precision, level, comm);
   } catch (const Error& error) {
     std::fprintf(stderr, "bench_lbm: %s\n", error.what());
     return static_cast<int>(error.code());
@@ -76,7 +87,8 @@ int main(int argc, char** argv) {
 }
 
 void run_benchmark(const std::string& image_path, int side, double radius, double phi, int steps, int repeats,
-                   const std::string& precision, const aniso::mpi::Comm& comm) {
+                   const std::string& precision, aniso::lbm::InstructionSet level,
+                   const aniso::mpi::Comm& comm) {
   using namespace aniso;
   const lbm::PetscSession petsc;
 
@@ -90,6 +102,7 @@ void run_benchmark(const std::string& image_path, int side, double radius, doubl
   lbm::FlowSettings settings;
   settings.precision = precision == "float" ? lbm::Precision::float32 : lbm::Precision::float64;
   settings.force = Vec3(1e-6, 0, 0);
+  settings.instruction_set = lbm::resolve_instruction_set(level);
   settings.fixed_steps = true;
   settings.max_steps = steps;
   settings.check_interval = steps;
@@ -113,11 +126,13 @@ void run_benchmark(const std::string& image_path, int side, double radius, doubl
   const double limit = bandwidth / bytes_per_node * 1e-6;
   if (comm.is_root())
     std::printf(
-        "ranks %d image %dx%dx%d fluid %.4f precision %s steps %d repeats %d median %.4f s (min %.4f max "
+        "ranks %d image %dx%dx%d fluid %.4f precision %s level %s steps %d repeats %d median %.4f s (min "
+        "%.4f max "
         "%.4f): %.2f MLUPS, %.2f MFLUPS (cpu median %.4f s); triad %.2f GB/s -> limit %.1f MFLUPS; %.1f%% of "
         "the limit\n",
         comm.size(), shape[0], shape[1], shape[2],
         static_cast<double>(topology.n_fluid_global) / static_cast<double>(topology.n_voxels_global),
-        precision.c_str(), steps, repeats, median, seconds.front(), seconds.back(), mlups, mflups,
-        cpu_seconds[cpu_seconds.size() / 2], bandwidth * 1e-9, limit, 100.0 * mflups / limit);
+        precision.c_str(), std::string(lbm::instruction_set_name(settings.instruction_set)).c_str(), steps,
+        repeats, median, seconds.front(), seconds.back(), mlups, mflups, cpu_seconds[cpu_seconds.size() / 2],
+        bandwidth * 1e-9, limit, 100.0 * mflups / limit);
 }
