@@ -14,12 +14,12 @@ EXPORT/NAME/:
                                    window held (the checkpoint's root attributes)
   voids.csv, void_curves.csv, permeability.csv   the void and permeability series (plots/voids.py csv)
   prepare.log                      the preparation's log (e against compaction cycle: studies/chart_prepare_cycles.py)
-  stage_times.csv                  per stage run of the campaign: wall seconds and ranks, from the
-                                   stage's own timing line in its log (logs/<stage>.log; source
-                                   "timing"; runs: the timing lines summed), or for programs that
-                                   did not log one yet from its lines' time stamps (source "stamps",
-                                   no ranks; runs: the stretches summed, a pause of more than 10
-                                   minutes, a stopped or killed process, ending one)
+  stage_times.csv                  per stage of the campaign: wall seconds and ranks from its log
+                                   (logs/<stage>.log), summed over its runs: a run's own timing line
+                                   (source "timing"), or for a run killed before it wrote one, and
+                                   for programs that did not log one yet, the span of its lines'
+                                   time stamps (source "stamps"; "timing+stamps" for a mix); a pause
+                                   of more than 10 minutes, a stopped or killed process, ends a run
 and EXPORT/comparison.md and EXPORT/figures/ from PAPER_OUT (paper_report.py's output).
 Files of an earlier export that this run does not make are left alone; every file it makes is replaced.
 
@@ -41,7 +41,7 @@ from voids import csv_files  # noqa: E402
 
 TIMING = re.compile(r"info timing: ([0-9.eE+-]+) s wall on (\d+) rank")
 STAMP = re.compile(r"^\[[^\]]+\] \[(\d\d):(\d\d):(\d\d)\]", re.MULTILINE)
-STAMP_GAP = 600  # seconds without a log line that end a run, for stamped_seconds
+STAMP_GAP = 600  # seconds without a log line that end a run (stretches)
 
 
 def fail(message):
@@ -92,21 +92,28 @@ def static_states(run, target):
                         "unbalanced_force_ratio"], rows)
 
 
-def stamped_seconds(text, gap=STAMP_GAP):
-    """Wall seconds that a log without timing lines spans, from its lines' [HH:MM:SS] stamps: the
-    spans of its runs summed, a run ending where the stamps stop for more than `gap` seconds (a
-    killed run and its rerun, a stopped process), a day added where the clock wraps. Returns
-    (seconds, runs), or None without stamps."""
-    stamps = [3600 * int(h) + 60 * int(m) + int(s) for h, m, s in STAMP.findall(text)]
-    if not stamps:
-        return None
-    total, runs, first, last = 0, 1, stamps[0], stamps[0]
-    for stamp in stamps[1:]:
-        step = (stamp - last) % 86400
-        if step > gap:
-            total, runs, first = total + (last - first) % 86400, runs + 1, stamp
-        last = stamp
-    return total + (last - first) % 86400, runs
+def stretches(text, gap=STAMP_GAP):
+    """A log's runs as (stamp span in seconds, [(timing wall, ranks), ...]) per stretch of its lines'
+    [HH:MM:SS] stamps, a stretch ending where the stamps stop for more than `gap` seconds (a killed
+    run and its rerun, a stopped process) and a day added where the clock wraps."""
+    found = []
+    for line in text.splitlines():
+        stamp = STAMP.match(line)
+        if stamp is None:
+            continue
+        h, m, s = stamp.groups()
+        timing = TIMING.search(line)
+        found.append((3600 * int(h) + 60 * int(m) + int(s),
+                      (float(timing.group(1)), int(timing.group(2))) if timing else None))
+    runs = []
+    for k, (stamp, timing) in enumerate(found):
+        if k == 0 or (stamp - found[k - 1][0]) % 86400 > gap:
+            runs.append([0, []])
+        else:
+            runs[-1][0] += (stamp - found[k - 1][0]) % 86400
+        if timing is not None:
+            runs[-1][1].append(timing)
+    return runs
 
 
 def stage_times(run, target):
@@ -114,15 +121,18 @@ def stage_times(run, target):
     for path in sorted(glob.glob(os.path.join(run, "logs", "*.log"))):
         with open(path, errors="replace") as f:
             text = f.read()
-        found = TIMING.findall(text)
         stage = os.path.basename(path)[:-4]
-        # a stage resumed after a kill logs one timing line per run: their sum is its wall time
-        if found:
-            rows.append([stage, f"{sum(float(w) for w, _ in found):.1f}", max(int(r) for _, r in found),
-                         len(found), "timing"])
-        elif (stamped := stamped_seconds(text)) is not None:
-            # programs built before aniso-voxel, -lbm and -fabric logged a timing line (2026-12-07)
-            rows.append([stage, f"{stamped[0]:.1f}", "", stamped[1], "stamps"])
+        runs = stretches(text)
+        if not runs:
+            continue
+        # A stretch's wall time is its timing lines' sum (a run that finished; several when a rerun
+        # followed within minutes) or, where that is less, its stamps' span (a run killed before its
+        # timing line, alone or before a rerun): a stage resumed after a kill counts every run.
+        seconds = sum(max(span, sum(w for w, _ in timings)) for span, timings in runs)
+        timed = [timings for _, timings in runs if timings]
+        ranks = max((r for timings in timed for _, r in timings), default="")
+        source = "timing" if len(timed) == len(runs) else ("stamps" if not timed else "timing+stamps")
+        rows.append([stage, f"{seconds:.1f}", ranks, sum(max(1, len(t)) for _, t in runs), source])
     write_rows(target, ["stage", "wall_seconds", "ranks", "runs", "source"], rows)
 
 

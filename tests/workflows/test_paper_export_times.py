@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """workflows/paper_export.py's stage times on hand-written logs with known wall times: a stage's
-timing lines summed over its runs (source "timing"); a log without one (aniso-voxel, -lbm and
+timing lines summed over its runs (source "timing"); a run killed before its timing line counted by
+its stamps beside the rerun's timing line (source "timing+stamps"); a log without one (aniso-voxel, -lbm and
 -fabric built before they logged it) timed from its [HH:MM:SS] stamps, a silence of more than 10
 minutes (a stopped or killed process) ending a stretch and a day added where the clock wraps
 (source "stamps"); a log without either left out.
@@ -48,6 +49,17 @@ class StageTimes(unittest.TestCase):
         row = stage_rows({"lbm_x": log})["lbm_x"]
         self.assertEqual((float(row["wall_seconds"]), row["ranks"], row["runs"], row["source"]),
                          (12 * 60 + 40.0, "", "2", "stamps"))
+
+    def test_a_run_killed_before_its_timing_line_counts_by_its_stamps(self):
+        # The load killed at a session's end after 2 h, resumed 3 h later and finished in 1 h: the
+        # timing line covers the last run alone.
+        def progress(hour, minutes):
+            return "".join(f"[load] [{hour + m // 60:02d}:{m % 60:02d}:00] info load: step\n" for m in minutes)
+        log = (progress(4, range(0, 125, 5)) +      # 04:00 .. 06:00, killed
+               progress(9, range(0, 60, 5)) + "[load] [10:00:00] info timing: 3600.4 s wall on 1 rank(s)\n")
+        row = stage_rows({"load": log})["load"]
+        self.assertEqual((float(row["wall_seconds"]), row["ranks"], row["runs"], row["source"]),
+                         (10800.4, "1", "2", "timing+stamps"))
 
     def test_a_log_without_stamps_or_timing_is_left_out(self):
         rows = stage_rows({"odd": "no stamps here\n", "voxel_a": "[voxel_a] [01:00:00] info input\n"})
