@@ -29,6 +29,11 @@ slurm_test_cluster() {
   # A short state path: munge's socket path is limited to 108 bytes.
   export ANISO_SLURM_DIR
   ANISO_SLURM_DIR=$(mktemp -d /tmp/aniso-slurm-test.XXXXXX)
+  # Open MPI names its shared-memory segments after the SLURM job (vader_segment.<host>.<job>...),
+  # which every private cluster numbers from 1: two of these tests on one host at once (a CI and
+  # a fresh-machine run, 2026-12-07) mapped each other's segments and crashed inside MPI_Allreduce.
+  # Each cluster's ranks keep theirs in its own folder.
+  export OMPI_MCA_btl_vader_backing_directory=$ANISO_SLURM_DIR
   export ANISO_SLURM_PORT
   ANISO_SLURM_PORT=$(/usr/bin/python3 - <<'PY'
 import random, socket
