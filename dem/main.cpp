@@ -146,9 +146,10 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
 
   std::optional<h5::Checkpoint> checkpoint;
   if (load->parsed() || hold->parsed() || relax->parsed() || consolidate->parsed()) {
-    checkpoint = h5::read_checkpoint(input, comm);
-    logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->particles.size(),
-                 checkpoint->contacts.size(), checkpoint->step);
+    // Each rank reads its slab of the rows; the simulation sends every particle to its rank.
+    checkpoint = h5::read_checkpoint(input, comm, h5::RowShare::slab);
+    logger->info("input '{}': {} particles, {} contacts, step {}", input, checkpoint->totals.particles,
+                 checkpoint->totals.contacts, checkpoint->step);
     dem::io::adopt_checkpoint_values(config, reader, *checkpoint, input);
   }
   require_input(!(load_options.resume && load_options.overwrite),

@@ -4,6 +4,7 @@
 #include "common/exact_sum.hpp"
 #include "dem/force_pass.hpp"
 #include "dem/model/integrator.hpp"
+#include "dem/parallel/contact_routing.hpp"
 
 #include <fmt/format.h>
 
@@ -14,43 +15,76 @@
 
 namespace aniso::dem {
 
+namespace {
+
+// The distinct aspect ratios, in the order each first appears (by rank, then by row: id order
+// for a distributed read's slabs), the same list on every rank of `comm` (collective).
+std::vector<double> aspect_ratios_in_id_order(const data::Particles& particles, const mpi::Comm& comm) {
+  std::vector<double> seen;
+  const auto note = [&](double aspect_ratio) {
+    if (std::find(seen.begin(), seen.end(), aspect_ratio) == seen.end()) seen.push_back(aspect_ratio);
+  };
+  for (std::size_t k = 0; k < particles.size(); ++k)
+    note(particles.aspect_ratio[k]);
+  if (comm.size() == 1) return seen;
+  std::vector<char> mine;
+  ByteWriter out(mine);
+  for (const double aspect_ratio : seen)
+    out.put(aspect_ratio);
+  seen.clear();
+  for (const auto& buffer : all_gather_bytes(comm, mine)) {
+    ByteReader in(buffer);
+    while (!in.done())
+      note(in.get<double>());
+  }
+  return seen;
+}
+
+} // namespace
+
 Simulation::Simulation(data::Particles particles, const PeriodicCell& cell, const model::CellControl& control,
-                       const SimulationSettings& settings, double time, std::int64_t step,
+                       const SimulationSettings& settings, double time, std::int64_t step, bool dealt,
                        const mpi::Comm& comm)
     : particles_(std::move(particles)), shapes_(settings.splice_angle), cell_(cell), control_(control),
       settings_(settings), neighbors_(settings.skin), domain_(comm), time_(time), step_(step) {
-  // Every rank holds every particle here, so these are global without communication.
+  // Every rank holds every particle, or (dealt) its share: then the reductions make these global.
+  const mpi::Comm self(MPI_COMM_SELF);
+  const mpi::Comm& holders = dealt ? comm : self;
   model::require_stable_time_step(
-      settings_.time_step, model::critical_time_step(particles_, settings_.density, settings_.material));
-  n_particles_ = static_cast<std::int64_t>(particles_.size());
+      settings_.time_step,
+      holders.min(model::critical_time_step(particles_, settings_.density, settings_.material)));
+  n_particles_ = holders.sum(static_cast<std::int64_t>(particles_.size()));
   ExactSum solid, mass;
+  double max_radius = 0;
   for (std::size_t k = 0; k < particles_.size(); ++k) {
     mass.add(particles_.mass[k]);
     solid.add(
         model::particle_volume(particles_.radius[k], particles_.aspect_ratio[k], settings_.splice_angle));
-    shapes_.add(particles_.aspect_ratio[k]);
+    max_radius = std::max(max_radius, particles_.radius[k]);
   }
-  solid_volume_ = solid.value();
-  mean_mass_ = mass.value() / static_cast<double>(n_particles_);
-  const double max_radius = *std::max_element(particles_.radius.begin(), particles_.radius.end());
+  solid_volume_ = holders.sum_exact(solid).value();
+  mean_mass_ = holders.sum_exact(mass).value() / static_cast<double>(n_particles_);
+  for (const double aspect_ratio : aspect_ratios_in_id_order(particles_, holders))
+    shapes_.add(aspect_ratio);
+  max_radius = holders.max(max_radius);
   neighbors_.set_max_radius(max_radius);
   reach_ = 2 * max_radius + settings_.skin;
   // Deal particles round-robin, then let the first decomposition send each to the rank of its bin.
-  if (comm.size() > 1) {
-    data::Particles dealt;
+  if (comm.size() > 1 && !dealt) {
+    data::Particles share;
     for (std::size_t k = static_cast<std::size_t>(comm.rank()); k < particles_.size();
          k += static_cast<std::size_t>(comm.size())) {
-      dealt.append(particles_, k);
+      share.append(particles_, k);
     }
-    dealt.n_owned = dealt.size();
-    particles_ = std::move(dealt);
+    share.n_owned = share.size();
+    particles_ = std::move(share);
   }
   rebuild_decomposition();
 }
 
 Simulation::Simulation(data::Particles particles, const PeriodicCell& cell, const model::CellControl& control,
                        const SimulationSettings& settings, const mpi::Comm& comm)
-    : Simulation(std::move(particles), cell, control, settings, 0.0, 0, comm) {
+    : Simulation(std::move(particles), cell, control, settings, 0.0, 0, false, comm) {
   compute_forces();
   stress_ = average_stress(particles_, cell_, neighbors_, comm);
   update_equilibrium();
@@ -58,9 +92,14 @@ Simulation::Simulation(data::Particles particles, const PeriodicCell& cell, cons
 
 Simulation::Simulation(data::Particles particles, const PeriodicCell& cell, const model::CellControl& control,
                        const SimulationSettings& settings, const RestartState& restart, const mpi::Comm& comm)
-    : Simulation(std::move(particles), cell, control, settings, restart.time, restart.step, comm) {
-  restore_contact_records(restart.contacts, particles_, cell_, settings_.material, contact_input(),
-                          neighbors_, restart.source);
+    : Simulation(std::move(particles), cell, control, settings, restart.time, restart.step, restart.dealt,
+                 comm) {
+  // Dealt contacts go to the ranks that own either particle, now that the particles are there.
+  const std::vector<StoredContact> routed =
+      restart.dealt ? parallel::route_contacts(restart.contacts, particles_, n_particles_, comm)
+                    : std::vector<StoredContact>{};
+  restore_contact_records(restart.dealt ? routed : restart.contacts, particles_, cell_, settings_.material,
+                          contact_input(), neighbors_, restart.source);
   measure_stress_now();
   damping_rate_ = restart.global_damping_rate;
 }

@@ -55,6 +55,9 @@ struct RestartState {
   std::vector<StoredContact> contacts;
   double global_damping_rate = 0; ///< [1/s], as it was at the stored step
   std::string source;             ///< names the stored state in messages ("checkpoint 'path'")
+  /// False: every rank holds every particle and every contact. True: each rank holds its share
+  /// of each (a distributed read, h5::RowShare::slab), each particle on exactly one rank.
+  bool dealt = false;
 };
 
 class Simulation {
@@ -68,6 +71,7 @@ public:
   /// stored forces, the contacts' records and histories rebuilt by the force pass's own arithmetic
   /// (force_pass.hpp, restore_contact_records), the stress and equilibrium measured from them
   /// (collective). FileError naming `restart.source` when the contacts disagree with the positions.
+  /// `particles` are all particles on every rank, or with `restart.dealt` this rank's share.
   Simulation(data::Particles particles, const PeriodicCell& cell, const model::CellControl& control,
              const SimulationSettings& settings, const RestartState& restart, const mpi::Comm& comm);
 
@@ -145,7 +149,8 @@ public:
 
 private:
   Simulation(data::Particles particles, const PeriodicCell& cell, const model::CellControl& control,
-             const SimulationSettings& settings, double time, std::int64_t step, const mpi::Comm& comm);
+             const SimulationSettings& settings, double time, std::int64_t step, bool dealt,
+             const mpi::Comm& comm);
   /// The force pass; with `measure`, it also fills contact_sums_ for the control update that follows.
   void compute_forces(bool measure = false);
   [[nodiscard]] ContactInput contact_input() const { return {&shapes_, settings_.hertz_radius}; }

@@ -1,6 +1,7 @@
 #include "common/h5/checkpoint.hpp"
 
 #include "common/error.hpp"
+#include "common/exchange.hpp"
 #include "common/h5/atomic_write.hpp"
 #include "common/h5/file.hpp"
 #include "common/h5/particle_separation.hpp"
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <span>
@@ -524,7 +526,21 @@ void write_content(File& file, const Checkpoint& local, const Provenance& proven
 
 // ---- Reading
 
-Checkpoint read_file(const std::string& path) {
+std::string contacts_out_of_order(std::uint64_t row) {
+  return "/contacts/particles: rows " + std::to_string(row) + " and " + std::to_string(row + 1) +
+         " are not in strictly increasing (id_i, id_j) order";
+}
+
+// Which rows of /particles and /contacts this rank reads (everything with RowShare::all).
+struct ReadShare {
+  RowShare share = RowShare::all;
+  int rank = 0, ranks = 1;
+  [[nodiscard]] RowSlab of(std::uint64_t total) const {
+    return share == RowShare::all ? RowSlab{0, total} : row_slab(total, rank, ranks);
+  }
+};
+
+Checkpoint read_file(const std::string& path, const ReadShare& share) {
   const File file = File::open(path);
   if (!file.has_attribute("schema"))
     file.fail("missing attribute 'schema' (expected '" + std::string(checkpoint_schema_name) +
@@ -538,6 +554,13 @@ Checkpoint read_file(const std::string& path) {
               std::to_string(checkpoint_schema_version));
 
   Checkpoint checkpoint;
+  checkpoint.share = share.share;
+  std::uint64_t n_particles = 0;
+  RowSlab particle_rows, contact_rows;
+  struct WholeAssembly {
+    std::vector<Vec3> position;
+    std::vector<double> diameter, aspect_ratio;
+  } whole; // a slab read's copy of what the overlap check needs of every particle
   checkpoint.time = file.read_attribute<double>("time");
   checkpoint.step = file.read_attribute<std::int64_t>("step");
   checkpoint.time_step = file.read_attribute<double>("time_step");
@@ -577,24 +600,32 @@ Checkpoint read_file(const std::string& path) {
       group.open_dataset("id").fail("shape " + format_dims(id_dims) +
                                     " found, expected [N] (one id per particle)");
     const hsize_t n = id_dims[0];
+    n_particles = n;
+    particle_rows = share.of(n);
+    const RowSlab& slab = particle_rows;
     ParticleRows& p = checkpoint.particles;
-    p.id = group.read_dataset<std::uint64_t>("id", Dims{n});
-    for (std::size_t row = 0; row < p.id.size(); ++row)
-      if (p.id[row] != row)
-        group.open_dataset("id").fail("row " + std::to_string(row) + " holds id " +
-                                      std::to_string(p.id[row]) + ", expected " + std::to_string(row) +
-                                      " (ids must be 0..N-1 in order)");
-    p.diameter = group.read_dataset<double>("diameter", Dims{n});
-    p.aspect_ratio = group.read_dataset<double>("aspect_ratio", Dims{n});
-    p.mass = group.read_dataset<double>("mass", Dims{n});
-    p.inertia = to_vec3(group.read_dataset<double>("inertia", Dims{n, 3}));
-    p.position = to_vec3(group.read_dataset<double>("position", Dims{n, 3}));
-    p.orientation = to_quat(group.read_dataset<double>("orientation", Dims{n, 4}));
-    p.velocity = to_vec3(group.read_dataset<double>("velocity", Dims{n, 3}));
-    p.angular_velocity = to_vec3(group.read_dataset<double>("angular_velocity", Dims{n, 3}));
-    p.force = to_vec3(group.read_dataset<double>("force", Dims{n, 3}));
-    p.torque = to_vec3(group.read_dataset<double>("torque", Dims{n, 3}));
-    if (group.has_child("source_id")) p.source_id = group.read_dataset<std::uint64_t>("source_id", Dims{n});
+    p.id = group.read_dataset_rows<std::uint64_t>("id", Dims{n}, slab);
+    for (std::size_t k = 0; k < p.id.size(); ++k)
+      if (const std::uint64_t row = slab.first + k; p.id[k] != row)
+        group.open_dataset("id").fail("row " + std::to_string(row) + " holds id " + std::to_string(p.id[k]) +
+                                      ", expected " + std::to_string(row) + " (ids must be 0..N-1 in order)");
+    p.diameter = group.read_dataset_rows<double>("diameter", Dims{n}, slab);
+    p.aspect_ratio = group.read_dataset_rows<double>("aspect_ratio", Dims{n}, slab);
+    p.mass = group.read_dataset_rows<double>("mass", Dims{n}, slab);
+    p.inertia = to_vec3(group.read_dataset_rows<double>("inertia", Dims{n, 3}, slab));
+    p.position = to_vec3(group.read_dataset_rows<double>("position", Dims{n, 3}, slab));
+    p.orientation = to_quat(group.read_dataset_rows<double>("orientation", Dims{n, 4}, slab));
+    p.velocity = to_vec3(group.read_dataset_rows<double>("velocity", Dims{n, 3}, slab));
+    p.angular_velocity = to_vec3(group.read_dataset_rows<double>("angular_velocity", Dims{n, 3}, slab));
+    p.force = to_vec3(group.read_dataset_rows<double>("force", Dims{n, 3}, slab));
+    p.torque = to_vec3(group.read_dataset_rows<double>("torque", Dims{n, 3}, slab));
+    if (group.has_child("source_id"))
+      p.source_id = group.read_dataset_rows<std::uint64_t>("source_id", Dims{n}, slab);
+    if (share.share == RowShare::slab) { // the whole assembly's, for the overlap check alone
+      whole.position = to_vec3(group.read_dataset<double>("position", Dims{n, 3}));
+      whole.diameter = group.read_dataset<double>("diameter", Dims{n});
+      whole.aspect_ratio = group.read_dataset<double>("aspect_ratio", Dims{n});
+    }
   }
 
   {
@@ -603,15 +634,18 @@ Checkpoint read_file(const std::string& path) {
     if (pair_dims.size() != 2 || pair_dims[1] != 2)
       group.open_dataset("particles").fail("shape " + format_dims(pair_dims) + " found, expected [M, 2]");
     const hsize_t m = pair_dims[0];
+    contact_rows = share.of(m);
+    const RowSlab& slab = contact_rows;
     ContactRows& c = checkpoint.contacts;
-    c.particles = to_arrays<std::uint64_t, 2>(group.read_dataset<std::uint64_t>("particles", Dims{m, 2}));
-    c.image_shift = to_vec3i(group.read_dataset<std::int32_t>("image_shift", Dims{m, 3}));
-    c.normal = to_vec3(group.read_dataset<double>("normal", Dims{m, 3}));
-    c.point = to_vec3(group.read_dataset<double>("point", Dims{m, 3}));
-    c.overlap = group.read_dataset<double>("overlap", Dims{m});
-    c.force = to_vec3(group.read_dataset<double>("force", Dims{m, 3}));
-    c.tangential_force = to_vec3(group.read_dataset<double>("tangential_force", Dims{m, 3}));
-    c.sliding = group.read_dataset<std::uint8_t>("sliding", Dims{m});
+    c.particles =
+        to_arrays<std::uint64_t, 2>(group.read_dataset_rows<std::uint64_t>("particles", Dims{m, 2}, slab));
+    c.image_shift = to_vec3i(group.read_dataset_rows<std::int32_t>("image_shift", Dims{m, 3}, slab));
+    c.normal = to_vec3(group.read_dataset_rows<double>("normal", Dims{m, 3}, slab));
+    c.point = to_vec3(group.read_dataset_rows<double>("point", Dims{m, 3}, slab));
+    c.overlap = group.read_dataset_rows<double>("overlap", Dims{m}, slab);
+    c.force = to_vec3(group.read_dataset_rows<double>("force", Dims{m, 3}, slab));
+    c.tangential_force = to_vec3(group.read_dataset_rows<double>("tangential_force", Dims{m, 3}, slab));
+    c.sliding = group.read_dataset_rows<std::uint8_t>("sliding", Dims{m}, slab);
   }
 
   {
@@ -635,34 +669,35 @@ Checkpoint read_file(const std::string& path) {
   static_cast<void>(read_provenance(file));
 
   // Values: the same rules the writer applies, with rows named by their row number.
-  const RowLabel row = [](std::size_t k) { return "row " + std::to_string(k); };
+  const RowLabel row = [&](std::size_t k) { return "row " + std::to_string(particle_rows.first + k); };
+  const RowLabel contact_row = [&](std::size_t k) { return "row " + std::to_string(contact_rows.first + k); };
   const auto pairs = std::span<const Key>(checkpoint.contacts.particles);
   Problem problem = first_of({
       [&]() -> Problem {
-        if (checkpoint.particles.size() == 0) return "/particles: no particles";
+        if (n_particles == 0) return "/particles: no particles";
         return std::nullopt;
       },
       [&] { return check_run_state(checkpoint); },
       [&] { return check_cell(checkpoint.cell); },
       [&] { return check_particles(checkpoint.particles, row); },
       [&] { return check_positions_in_cell(checkpoint.particles, checkpoint.cell.lengths, row); },
-      [&] { return check_contact_ids(pairs, checkpoint.particles.size(), row); },
+      [&] { return check_contact_ids(pairs, n_particles, contact_row); },
       [&]() -> Problem {
         for (std::size_t k = 1; k < pairs.size(); ++k)
-          if (!(pairs[k - 1] < pairs[k]))
-            return "/contacts/particles: rows " + std::to_string(k - 1) + " and " + std::to_string(k) +
-                   " are not in strictly increasing (id_i, id_j) order";
+          if (!(pairs[k - 1] < pairs[k])) return contacts_out_of_order(contact_rows.first + k - 1);
         return std::nullopt;
       },
-      [&] { return check_contact_values(checkpoint.contacts, row); },
+      [&] { return check_contact_values(checkpoint.contacts, contact_row); },
       [&]() -> Problem {
         // Older files without the limit: only what no limit allows (one body inside another).
         const double limit = has_parameter(checkpoint, "explosion_overlap")
                                  ? parameter(checkpoint, "explosion_overlap", path)
                                  : 1.0;
         const ParticleRows& p = checkpoint.particles;
-        if (auto pair = deepest_impossible_overlap(p.position, p.diameter, p.aspect_ratio,
-                                                   checkpoint.cell.lengths, limit))
+        const bool all = share.share == RowShare::all;
+        if (auto pair = deepest_impossible_overlap(
+                all ? p.position : whole.position, all ? p.diameter : whole.diameter,
+                all ? p.aspect_ratio : whole.aspect_ratio, checkpoint.cell.lengths, limit))
           return "/particles/position: " + *pair + ": no DEM run reaches this state";
         return std::nullopt;
       },
@@ -780,16 +815,55 @@ void write_checkpoint(const std::string& path, const Checkpoint& local, const Pr
   atomic.commit();
 }
 
-Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm) {
-  // Every rank reads the whole file; a failure anywhere fails everywhere with the same message.
+Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm, RowShare share) {
+  // Every rank reads its rows; a failure anywhere fails everywhere with the same message.
   Checkpoint checkpoint;
   Problem problem;
   try {
-    checkpoint = read_file(path);
+    checkpoint = read_file(path, ReadShare{share, comm.rank(), comm.size()});
   } catch (const FileError& error) {
     problem = error.what();
   }
   throw_if_any<FileError>(comm, problem, "");
+  const ParticleRows& p = checkpoint.particles;
+  const auto pairs = std::span<const Key>(checkpoint.contacts.particles);
+  RowTotals& totals = checkpoint.totals;
+  const auto [smallest, largest] = std::minmax_element(p.diameter.begin(), p.diameter.end());
+  const auto [flattest, roundest] = std::minmax_element(p.aspect_ratio.begin(), p.aspect_ratio.end());
+  constexpr double none = std::numeric_limits<double>::infinity();
+  totals = {p.size(),
+            pairs.size(),
+            p.size() > 0 ? *smallest : none,
+            p.size() > 0 ? *largest : -none,
+            p.size() > 0 ? *flattest : none,
+            p.size() > 0 ? *roundest : -none};
+  if (share == RowShare::all || comm.size() == 1) return checkpoint;
+
+  totals.particles = static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(totals.particles)));
+  totals.contacts = static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(totals.contacts)));
+  totals.diameter_min = comm.min(totals.diameter_min);
+  totals.diameter_max = comm.max(totals.diameter_max);
+  totals.aspect_ratio_min = comm.min(totals.aspect_ratio_min);
+  totals.aspect_ratio_max = comm.max(totals.aspect_ratio_max);
+  // The contacts' order across the slabs: each slab's first pair after the last pair before it.
+  std::vector<char> ends;
+  ByteWriter out(ends);
+  if (!pairs.empty()) {
+    out.put(pairs.front());
+    out.put(pairs.back());
+  }
+  const RowSlab mine = row_slab(totals.contacts, comm.rank(), comm.size());
+  std::optional<Key> before;
+  const auto gathered = all_gather_bytes(comm, ends);
+  for (int rank = 0; rank < comm.rank(); ++rank) {
+    const auto& theirs = gathered[static_cast<std::size_t>(rank)];
+    if (theirs.empty()) continue;
+    ByteReader in(theirs);
+    static_cast<void>(in.get<Key>());
+    before = in.get<Key>();
+  }
+  if (before && !pairs.empty() && !(*before < pairs.front())) problem = contacts_out_of_order(mine.first - 1);
+  throw_if_any<FileError>(comm, problem ? std::optional(path + ": " + *problem) : std::nullopt, "");
   return checkpoint;
 }
 

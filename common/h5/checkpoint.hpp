@@ -87,14 +87,31 @@ struct ContactRows {
   void resize(std::size_t n);
 };
 
+/// Which rows read_checkpoint gives each rank.
+enum class RowShare {
+  all,  ///< every row on every rank: the stages that measure the whole assembly
+  slab, ///< rank r of P rows [R r / P, R (r + 1) / P) of /particles and of /contacts: the DEM,
+        ///< which sends each particle to the rank of its bin, so no rank holds the whole file
+};
+
+/// The whole file's rows in numbers, whichever share of them this rank holds.
+struct RowTotals {
+  std::uint64_t particles = 0;
+  std::uint64_t contacts = 0;
+  double diameter_min = 0, diameter_max = 0;
+  double aspect_ratio_min = 0, aspect_ratio_max = 0;
+};
+
 /// The complete state of a DEM run at one step.
 struct Checkpoint {
   double time = 0;       ///< simulated time [s]
   std::int64_t step = 0; ///< time steps taken
   double time_step = 0;  ///< [s]
   CellState cell;
-  ParticleRows particles;                              ///< this rank's rows (all rows after read)
-  ContactRows contacts;                                ///< this rank's rows (all rows after read)
+  ParticleRows particles;                              ///< this rank's rows (after a read: as `share` says)
+  ContactRows contacts;                                ///< this rank's rows (after a read: as `share` says)
+  RowShare share = RowShare::all;                      ///< which rows a read gave this rank
+  RowTotals totals;                                    ///< the whole file's, set by read_checkpoint
   std::vector<Parameter> parameters;                   ///< material and run parameters
   std::vector<std::array<std::uint64_t, 4>> rng_state; ///< every random stream's state
   /// How near static equilibrium the stored state is (root attributes; NaN: not recorded, as in
@@ -114,9 +131,12 @@ struct Checkpoint {
 void write_checkpoint(const std::string& path, const Checkpoint& local, const Provenance& provenance,
                       const mpi::Comm& comm, const std::function<void(File&)>& add = {});
 
-/// Reads and validates a checkpoint; every rank receives all rows. Throws FileError naming
-/// the file and the dataset on any problem (version, missing dataset, shape, non-finite value).
-Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm);
+/// Reads and validates a checkpoint; every rank receives all rows, or with RowShare::slab its
+/// slab of them (every rank still reads the positions and sizes of all, for the one check that
+/// spans the whole assembly: no pair overlaps beyond the explosion limit). Throws FileError
+/// naming the file and the dataset on any problem (version, missing dataset, shape, non-finite
+/// value), on every rank (collective).
+Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm, RowShare share = RowShare::all);
 
 /// True if the checkpoint holds a parameter of this name.
 bool has_parameter(const Checkpoint& checkpoint, const std::string& name);

@@ -441,9 +441,7 @@ template <Element T> void Dataset::write_rows(const RowSelection& rows, std::spa
   // the dataset; each rank then writes one contiguous block (for a complete set of rows).
   const int n_ranks = context_->size;
   const hsize_t n_total = shape[0];
-  const auto block_start = [&](int rank) {
-    return n_total * static_cast<hsize_t>(rank) / static_cast<hsize_t>(n_ranks);
-  };
+  const auto block_start = [&](int rank) { return slab_start(n_total, rank, n_ranks); };
   std::vector<int> send_counts(static_cast<std::size_t>(n_ranks), 0);
   std::vector<std::uint64_t> send_rows;
   send_rows.reserve(rows.size());
@@ -570,6 +568,30 @@ template <Element T> std::vector<T> Dataset::read(const Dims& expected) const {
   return read<T>();
 }
 
+template <Element T> std::vector<T> Dataset::read_rows(const Dims& expected, const RowSlab& rows) const {
+  const Dims found = dims();
+  if (found != expected) fail("shape " + format_dims(found) + " found, expected " + format_dims(expected));
+  if (found.empty() || rows.end() > found[0])
+    fail(fmt::format("rows {}..{} asked of shape {}", rows.first, rows.end(), format_dims(found)));
+  check_stored_type<T>();
+  check_stored_size();
+  std::vector<T> values(rows.count * product(found, 1));
+  if (values.empty()) return values;
+  Handle file_space(H5Dget_space(id()), H5Sclose);
+  Dims start(found.size(), 0);
+  Dims count = found;
+  start[0] = rows.first;
+  count[0] = rows.count;
+  const hsize_t n_values = values.size();
+  Handle memory_space(H5Screate_simple(1, &n_values, nullptr), H5Sclose);
+  if (!file_space.valid() || !memory_space.valid() ||
+      H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) < 0)
+    fail("cannot select rows");
+  if (H5Dread(id(), memory_type<T>(), memory_space.get(), file_space.get(), H5P_DEFAULT, values.data()) < 0)
+    fail_read();
+  return values;
+}
+
 // ---- Group
 
 Group Group::create_group(const std::string& child) {
@@ -631,6 +653,12 @@ void Group::write_dataset(const std::string& child, std::span<const T> data, con
 template <Element T>
 std::vector<T> Group::read_dataset(const std::string& child, const Dims& expected) const {
   return open_dataset(child).read<T>(expected);
+}
+
+template <Element T>
+std::vector<T> Group::read_dataset_rows(const std::string& child, const Dims& expected,
+                                        const RowSlab& rows) const {
+  return open_dataset(child).read_rows<T>(expected, rows);
 }
 
 // ---- File
@@ -704,6 +732,9 @@ void File::close() {
   template void Dataset::write_local_rows<T>(const RowSelection&, std::span<const T>, const Dims&);          \
   template std::vector<T> Dataset::read<T>() const;                                                          \
   template std::vector<T> Dataset::read<T>(const Dims&) const;                                               \
+  template std::vector<T> Dataset::read_rows<T>(const Dims&, const RowSlab&) const;                          \
+  template std::vector<T> Group::read_dataset_rows<T>(const std::string&, const Dims&, const RowSlab&)       \
+      const;                                                                                                 \
   template Dataset Group::create_dataset<T>(const std::string&, const Dims&, std::string_view,               \
                                             std::string_view);                                               \
   template void Group::write_dataset<T>(const std::string&, std::span<const T>, const Dims&,                 \

@@ -11,6 +11,7 @@
 // Reads are independent and may be made by any subset of ranks.
 
 #include "common/mpi.hpp"
+#include "common/row_slab.hpp"
 
 #include <hdf5.h>
 
@@ -163,6 +164,10 @@ public:
   template <Element T> [[nodiscard]] std::vector<T> read() const;
   /// As read(), after checking that the shape is `expected` (message: found vs expected dims).
   template <Element T> [[nodiscard]] std::vector<T> read(const Dims& expected) const;
+  /// As read(expected), rows `rows` of the first dimension only (one hyperslab): a rank's share
+  /// of a dataset that every rank would otherwise read whole.
+  template <Element T>
+  [[nodiscard]] std::vector<T> read_rows(const Dims& expected, const RowSlab& rows) const;
 
 private:
   friend class Group;
@@ -205,6 +210,10 @@ public:
   /// shape.
   template <Element T>
   [[nodiscard]] std::vector<T> read_dataset(const std::string& child, const Dims& expected) const;
+  /// open_dataset + Dataset::read_rows.
+  template <Element T>
+  [[nodiscard]] std::vector<T> read_dataset_rows(const std::string& child, const Dims& expected,
+                                                 const RowSlab& rows) const;
 
 protected:
   friend class File;

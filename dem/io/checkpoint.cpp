@@ -82,12 +82,13 @@ namespace {
 // positions outside the cell, for every stage).
 void check_particle_rows(const h5::Checkpoint& checkpoint, const std::string& path) {
   const auto& rows = checkpoint.particles;
-  if (rows.size() == 0) throw FileError(path + ": /particles: no particles");
+  const bool slab = checkpoint.share == h5::RowShare::slab; // rows of a slab: row number = id
+  if (!slab && rows.size() == 0) throw FileError(path + ": /particles: no particles");
   const config::Range aspect = key_range("dem.particles.aspect_ratio");
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto refuse = [&](const char* dataset, const std::string& what) {
-      throw FileError(
-          fmt::format("{}: /particles/{}: row {} (particle id {}): {}", path, dataset, k, rows.id[k], what));
+      throw FileError(fmt::format("{}: /particles/{}: row {} (particle id {}): {}", path, dataset,
+                                  slab ? rows.id[k] : k, rows.id[k], what));
     };
     if (!(rows.diameter[k] > 0.0)) refuse("diameter", fmt::format("{:g}, expected > 0", rows.diameter[k]));
     if (!(rows.mass[k] > 0.0)) refuse("mass", fmt::format("{:g}, expected > 0", rows.mass[k]));
@@ -134,6 +135,7 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
     stored.sliding = rows_c.sliding[c] != 0;
   }
   restart.global_damping_rate = h5::parameter(checkpoint, "global_damping_rate", path);
+  restart.dealt = checkpoint.share == h5::RowShare::slab && comm.size() > 1;
   const auto [cell, control] = cell_and_control(checkpoint.cell);
   Simulation simulation(std::move(particles), cell, control, settings_from_checkpoint(checkpoint, path),
                         restart, comm);

@@ -742,31 +742,32 @@ void adopt_checkpoint_values(DemConfig& config, config::Reader& reader, const h5
     reader.replace(key, std::move(value_toml), note);
   };
   constexpr std::string_view from_file = "from the input checkpoint";
-  // What the particle rows fix: their count and extreme sizes, and one aspect ratio for all.
-  const auto& rows = checkpoint.particles;
+  // What the particle rows fix: their count and extreme sizes, and one aspect ratio for all
+  // (the whole file's, whichever rows this rank read).
+  const h5::RowTotals& rows = checkpoint.totals;
   auto& pc = config.particles;
-  const auto n_rows = static_cast<std::int64_t>(rows.size());
+  const auto n_rows = static_cast<std::int64_t>(rows.particles);
   adopt("dem.particles.count", pc.count == n_rows,
         fmt::format("{}, the checkpoint has {} particles", pc.count, n_rows), std::to_string(n_rows),
         from_file);
   pc.count = n_rows;
   // A size bound is kept when every stored diameter lies within it.
-  const auto [smallest, largest] = std::minmax_element(rows.diameter.begin(), rows.diameter.end());
-  adopt("dem.particles.diameter_min", *smallest >= pc.diameter_min * (1 - 1e-9),
-        fmt::format("{:g} m, the checkpoint's diameters reach {:g} m", pc.diameter_min, *smallest),
-        fmt::format("{}", *smallest), "from the input checkpoint (its extreme diameter)");
-  pc.diameter_min = *smallest;
-  adopt("dem.particles.diameter_max", *largest <= pc.diameter_max * (1 + 1e-9),
-        fmt::format("{:g} m, the checkpoint's diameters reach {:g} m", pc.diameter_max, *largest),
-        fmt::format("{}", *largest), "from the input checkpoint (its extreme diameter)");
-  pc.diameter_max = *largest;
+  const double smallest = rows.diameter_min, largest = rows.diameter_max;
+  adopt("dem.particles.diameter_min", smallest >= pc.diameter_min * (1 - 1e-9),
+        fmt::format("{:g} m, the checkpoint's diameters reach {:g} m", pc.diameter_min, smallest),
+        fmt::format("{}", smallest), "from the input checkpoint (its extreme diameter)");
+  pc.diameter_min = smallest;
+  adopt("dem.particles.diameter_max", largest <= pc.diameter_max * (1 + 1e-9),
+        fmt::format("{:g} m, the checkpoint's diameters reach {:g} m", pc.diameter_max, largest),
+        fmt::format("{}", largest), "from the input checkpoint (its extreme diameter)");
+  pc.diameter_max = largest;
   // One aspect ratio for every particle is what prepare makes; a mixed file has no single value.
-  const auto [flattest, roundest] = std::minmax_element(rows.aspect_ratio.begin(), rows.aspect_ratio.end());
-  if (*flattest == *roundest) {
-    adopt("dem.particles.aspect_ratio", !(std::abs(pc.aspect_ratio - *flattest) > 1e-9 * *flattest),
-          fmt::format("{:g}, the checkpoint has {:g}", pc.aspect_ratio, *flattest),
-          fmt::format("{}", *flattest), from_file);
-    pc.aspect_ratio = *flattest;
+  const double flattest = rows.aspect_ratio_min, roundest = rows.aspect_ratio_max;
+  if (flattest == roundest) {
+    adopt("dem.particles.aspect_ratio", !(std::abs(pc.aspect_ratio - flattest) > 1e-9 * flattest),
+          fmt::format("{:g}, the checkpoint has {:g}", pc.aspect_ratio, flattest),
+          fmt::format("{}", flattest), from_file);
+    pc.aspect_ratio = flattest;
   }
   // What the stored settings fix, in table order (d50 before the skin it scales), compared in
   // the key's unit to 1e-9.

@@ -2,34 +2,12 @@
 
 #include "common/error.hpp"
 #include "common/exchange.hpp"
+#include "dem/parallel/pack.hpp"
 
 #include <algorithm>
 
 namespace aniso::dem::parallel {
 namespace {
-
-void put_vec3(ByteWriter& out, const Vec3& v) {
-  out.put(v[0]);
-  out.put(v[1]);
-  out.put(v[2]);
-}
-
-Vec3 get_vec3(ByteReader& in) {
-  const double x = in.get<double>(), y = in.get<double>(), z = in.get<double>();
-  return {x, y, z};
-}
-
-void put_quat(ByteWriter& out, const Quat& q) {
-  out.put(q.w());
-  out.put(q.x());
-  out.put(q.y());
-  out.put(q.z());
-}
-
-Quat get_quat(ByteReader& in) {
-  const double w = in.get<double>(), x = in.get<double>(), y = in.get<double>(), z = in.get<double>();
-  return {w, x, y, z};
-}
 
 // What changes from step to step: position, orientation, velocity and angular velocity.
 constexpr std::size_t ghost_state_size = 3 + 4 + 3 + 3;

@@ -3,6 +3,7 @@
 // awkward values (negative zero, subnormals, extremes), a way to deal its rows
 // out to ranks, and a bit-for-bit comparison of two checkpoints.
 #include "common/h5/checkpoint.hpp"
+#include "common/h5/file.hpp"
 #include "common/mpi.hpp"
 #include "common/rng.hpp"
 
@@ -118,6 +119,17 @@ inline h5::Checkpoint sample_checkpoint(std::uint64_t seed, std::size_t n_partic
   return checkpoint;
 }
 
+/// Changes one dataset of a written file in place (a damaged or edited file, for failure tests).
+template <class T>
+void rewrite(const std::string& file_path, const std::string& group, const std::string& dataset,
+             const std::function<void(std::vector<T>&)>& change) {
+  h5::File file = h5::File::open(file_path, h5::File::Access::read_write);
+  auto handle = file.open_group(group).open_dataset(dataset);
+  std::vector<T> values = handle.template read<T>();
+  change(values);
+  handle.write(std::span<const T>(values));
+}
+
 inline h5::Provenance sample_provenance(int n_ranks) {
   h5::Provenance provenance;
   provenance.program = "aniso test";
@@ -131,15 +143,18 @@ inline h5::Provenance sample_provenance(int n_ranks) {
 }
 
 /// The rows of `full` for which keep_particle(row) / keep_contact(row) hold, in reverse order
-/// (so that writers cannot rely on sorted input).
+/// (so that writers cannot rely on sorted input), or in file order with `in_order`.
 inline h5::Checkpoint select_rows(const h5::Checkpoint& full,
                                   const std::function<bool(std::size_t)>& keep_particle,
-                                  const std::function<bool(std::size_t)>& keep_contact) {
+                                  const std::function<bool(std::size_t)>& keep_contact,
+                                  bool in_order = false) {
+  const auto row = [&](std::size_t n, std::size_t k) { return in_order ? n - 1 - k : k; };
   h5::Checkpoint part = full;
   part.particles = {};
   part.contacts = {};
   const h5::ParticleRows& p = full.particles;
-  for (std::size_t k = p.size(); k-- > 0;) {
+  for (std::size_t r = p.size(); r-- > 0;) {
+    const std::size_t k = row(p.size(), r);
     if (!keep_particle(k)) continue;
     h5::ParticleRows& q = part.particles;
     q.id.push_back(p.id[k]);
@@ -155,7 +170,8 @@ inline h5::Checkpoint select_rows(const h5::Checkpoint& full,
     q.torque.push_back(p.torque[k]);
   }
   const h5::ContactRows& c = full.contacts;
-  for (std::size_t k = c.size(); k-- > 0;) {
+  for (std::size_t r = c.size(); r-- > 0;) {
+    const std::size_t k = row(c.size(), r);
     if (!keep_contact(k)) continue;
     h5::ContactRows& d = part.contacts;
     d.particles.push_back(c.particles[k]);

@@ -8,10 +8,12 @@
 #include "common/h5/checkpoint.hpp"
 #include "common/h5/file.hpp"
 #include "common/mpi.hpp"
+#include "common/row_slab.hpp"
 #include "tests/common/checkpoint_sample.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -48,6 +50,14 @@ protected:
     aniso::h5::write_checkpoint(path(name), share, sample_provenance(comm_.size()), comm_);
     const Checkpoint read = aniso::h5::read_checkpoint(path(name), comm_);
     aniso::test::expect_bit_identical(full, read);
+  }
+
+  // Writes the whole checkpoint from rank 0 alone, for every rank to read.
+  void write_alone(const Checkpoint& full, const std::string& name) {
+    Comm alone = comm_.split(comm_.is_root() ? 0 : 1, 0);
+    if (comm_.is_root()) aniso::h5::write_checkpoint(path(name), full, sample_provenance(1), alone);
+    alone.free();
+    comm_.barrier();
   }
 
   const Comm comm_ = Comm::world();
@@ -110,10 +120,7 @@ TEST_F(MpiCheckpoint, SameDataAsAOneRankFile) {
       full, [&](std::size_t k) { return k % n_ranks() == rank(); },
       [&](std::size_t k) { return k % n_ranks() == rank(); });
   aniso::h5::write_checkpoint(path("all_ranks.h5"), share, sample_provenance(1), comm_);
-  Comm alone = comm_.split(comm_.is_root() ? 0 : 1, 0);
-  if (comm_.is_root()) aniso::h5::write_checkpoint(path("one_rank.h5"), full, sample_provenance(1), alone);
-  alone.free();
-  comm_.barrier();
+  write_alone(full, "one_rank.h5");
   const Checkpoint from_all = aniso::h5::read_checkpoint(path("all_ranks.h5"), comm_);
   const Checkpoint from_one = aniso::h5::read_checkpoint(path("one_rank.h5"), comm_);
   aniso::test::expect_bit_identical(from_one, from_all);
@@ -131,6 +138,59 @@ TEST_F(MpiCheckpoint, SameDataAsAOneRankFile) {
       const aniso::h5::Handle y_type(H5Dget_type(y.id()), H5Tclose);
       EXPECT_EQ(H5Tequal(x_type.get(), y_type.get()), 1) << x.name();
       EXPECT_EQ(H5Dget_storage_size(x.id()), H5Dget_storage_size(y.id())) << x.name();
+    }
+  }
+}
+
+// The DEM's start: each rank reads its contiguous slab of the rows, and the totals of all.
+TEST_F(MpiCheckpoint, SlabReadGivesEachRankItsRowsAndTheTotals) {
+  for (const auto& [n_particles, n_contacts] : {std::pair<std::size_t, std::size_t>{121, 345}, {1, 0}}) {
+    const Checkpoint full = sample_checkpoint(37, n_particles, n_contacts, 2);
+    const std::string name = "slab" + std::to_string(n_particles) + ".h5";
+    write_alone(full, name);
+    const Checkpoint read = aniso::h5::read_checkpoint(path(name), comm_, aniso::h5::RowShare::slab);
+    const aniso::RowSlab particles = aniso::row_slab(n_particles, comm_.rank(), comm_.size());
+    const aniso::RowSlab contacts = aniso::row_slab(n_contacts, comm_.rank(), comm_.size());
+    const Checkpoint expected = aniso::test::select_rows(
+        full, [&](std::size_t k) { return k >= particles.first && k < particles.end(); },
+        [&](std::size_t k) { return k >= contacts.first && k < contacts.end(); }, true);
+    aniso::test::expect_bit_identical(expected, read);
+    EXPECT_EQ(read.share, aniso::h5::RowShare::slab);
+    EXPECT_EQ(comm_.sum(static_cast<std::int64_t>(read.particles.size())),
+              static_cast<std::int64_t>(n_particles));
+    const aniso::h5::RowTotals& totals = read.totals;
+    EXPECT_EQ(totals.particles, n_particles);
+    EXPECT_EQ(totals.contacts, n_contacts);
+    const auto& d = full.particles.diameter;
+    const auto& a = full.particles.aspect_ratio;
+    EXPECT_EQ(totals.diameter_min, *std::min_element(d.begin(), d.end()));
+    EXPECT_EQ(totals.diameter_max, *std::max_element(d.begin(), d.end()));
+    EXPECT_EQ(totals.aspect_ratio_min, *std::min_element(a.begin(), a.end()));
+    EXPECT_EQ(totals.aspect_ratio_max, *std::max_element(a.begin(), a.end()));
+  }
+}
+
+// Two contact rows swapped where rank 0's slab ends and rank 1's begins: each slab is in order
+// by itself, the file is not. Every rank throws the message one rank gives for the whole file.
+TEST_F(MpiCheckpoint, SlabReadRefusesContactsOutOfOrderAcrossSlabs) {
+  const std::size_t n_contacts = 40;
+  write_alone(sample_checkpoint(38, 30, n_contacts, 1), "swapped.h5");
+  const std::size_t boundary = aniso::row_slab(n_contacts, 1, std::max(comm_.size(), 2)).first;
+  if (comm_.is_root())
+    aniso::test::rewrite<std::uint64_t>(path("swapped.h5"), "contacts", "particles", [&](auto& v) {
+      std::swap(v[2 * (boundary - 1)], v[2 * boundary]);
+      std::swap(v[2 * (boundary - 1) + 1], v[2 * boundary + 1]);
+    });
+  comm_.barrier();
+  const std::string expected = "/contacts/particles: rows " + std::to_string(boundary - 1) + " and " +
+                               std::to_string(boundary) +
+                               " are not in strictly increasing (id_i, id_j) order";
+  for (const auto share : {aniso::h5::RowShare::all, aniso::h5::RowShare::slab}) {
+    try {
+      static_cast<void>(aniso::h5::read_checkpoint(path("swapped.h5"), comm_, share));
+      ADD_FAILURE() << "read a file with contacts out of order";
+    } catch (const aniso::FileError& error) {
+      EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
     }
   }
 }

@@ -28,6 +28,7 @@ using aniso::InputError;
 using aniso::h5::Checkpoint;
 using aniso::h5::File;
 using aniso::mpi::Comm;
+using aniso::test::rewrite;
 using aniso::test::sample_checkpoint;
 using aniso::test::sample_provenance;
 
@@ -82,16 +83,6 @@ TEST_F(CheckpointFile, ProvenanceFromTheBuild) {
 }
 
 // ---- Failure table: each row corrupts a valid file one way and names what the message must contain.
-
-template <class T>
-void rewrite(const std::string& file_path, const std::string& group, const std::string& dataset,
-             const std::function<void(std::vector<T>&)>& change) {
-  File file = File::open(file_path, File::Access::read_write);
-  auto handle = file.open_group(group).open_dataset(dataset);
-  std::vector<T> values = handle.template read<T>();
-  change(values);
-  handle.write(std::span<const T>(values));
-}
 
 struct Corruption {
   std::string name;
