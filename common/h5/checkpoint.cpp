@@ -816,7 +816,9 @@ void write_checkpoint(const std::string& path, const Checkpoint& local, const Pr
 }
 
 Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm, RowShare share) {
-  // Every rank reads its rows; a failure anywhere fails everywhere with the same message.
+  // Every rank reads its rows; a failure anywhere fails everywhere with the same message. One
+  // rank's slab is the whole file, read whole (one selection less, no second copy of positions).
+  if (comm.size() == 1) share = RowShare::all;
   Checkpoint checkpoint;
   Problem problem;
   try {

@@ -133,7 +133,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& local, const Pr
 
 /// Reads and validates a checkpoint; every rank receives all rows, or with RowShare::slab its
 /// slab of them (every rank still reads the positions and sizes of all, for the one check that
-/// spans the whole assembly: no pair overlaps beyond the explosion limit). Throws FileError
+/// spans the whole assembly: no pair overlaps beyond the explosion limit); on one rank a slab is
+/// the whole file, and the share is RowShare::all. Throws FileError
 /// naming the file and the dataset on any problem (version, missing dataset, shape, non-finite
 /// value), on every rank (collective).
 Checkpoint read_checkpoint(const std::string& path, const mpi::Comm& comm, RowShare share = RowShare::all);

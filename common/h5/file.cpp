@@ -573,6 +573,7 @@ template <Element T> std::vector<T> Dataset::read_rows(const Dims& expected, con
   if (found != expected) fail("shape " + format_dims(found) + " found, expected " + format_dims(expected));
   if (found.empty() || rows.end() > found[0])
     fail(fmt::format("rows {}..{} asked of shape {}", rows.first, rows.end(), format_dims(found)));
+  if (rows.first == 0 && rows.count == found[0]) return read<T>(); // HDF5's whole-dataset path
   check_stored_type<T>();
   check_stored_size();
   std::vector<T> values(rows.count * product(found, 1));

@@ -135,7 +135,7 @@ Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& 
     stored.sliding = rows_c.sliding[c] != 0;
   }
   restart.global_damping_rate = h5::parameter(checkpoint, "global_damping_rate", path);
-  restart.dealt = checkpoint.share == h5::RowShare::slab && comm.size() > 1;
+  restart.dealt = checkpoint.share == h5::RowShare::slab;
   const auto [cell, control] = cell_and_control(checkpoint.cell);
   Simulation simulation(std::move(particles), cell, control, settings_from_checkpoint(checkpoint, path),
                         restart, comm);

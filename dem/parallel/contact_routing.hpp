@@ -17,9 +17,10 @@ namespace aniso::dem::parallel {
 /// The stored contacts with at least one particle owned by this rank, in (id_i, id_j) order,
 /// from `contacts`, whatever share of the stored contacts each rank passes (collective).
 /// `particles` are this rank's after the decomposition (owned first); `n_particles` the
-/// assembly's count, whose ids are 0 .. n_particles - 1.
+/// assembly's count, whose ids are 0 .. n_particles - 1. The contacts travel in rounds of at
+/// most `batch` per rank, which bounds the buffers' memory.
 std::vector<StoredContact> route_contacts(std::span<const StoredContact> contacts,
                                           const data::Particles& particles, std::int64_t n_particles,
-                                          const mpi::Comm& comm);
+                                          const mpi::Comm& comm, std::size_t batch = std::size_t{1} << 16);
 
 } // namespace aniso::dem::parallel
