@@ -217,4 +217,16 @@ std::vector<std::int64_t> Comm::all_gather(std::int64_t local) const {
   return result;
 }
 
+std::optional<RankProblem> first_problem(const Comm& comm, const std::optional<std::string>& local) {
+  const std::vector<std::int64_t> failed = comm.all_gather(local ? 1 : 0);
+  for (int rank = 0; rank < static_cast<int>(failed.size()); ++rank) {
+    if (failed[static_cast<std::size_t>(rank)] == 0) continue;
+    const std::string text = local.value_or("");
+    std::vector<char> bytes(text.begin(), text.end());
+    comm.broadcast(bytes, rank);
+    return RankProblem{rank, std::string(bytes.begin(), bytes.end())};
+  }
+  return std::nullopt;
+}
+
 } // namespace aniso::mpi

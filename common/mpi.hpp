@@ -9,6 +9,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -75,5 +76,15 @@ public:
 private:
   MPI_Comm raw_;
 };
+
+/// A problem found by the lowest rank that found one, with that rank, on every rank; nothing when
+/// no rank found any (collective). A check that only some ranks can fail (each checks its own
+/// rows) must end on every rank with the same message, or the others wait in the next collective.
+struct RankProblem {
+  int rank = 0;
+  std::string text;
+};
+[[nodiscard]] std::optional<RankProblem> first_problem(const Comm& comm,
+                                                       const std::optional<std::string>& local);
 
 } // namespace aniso::mpi

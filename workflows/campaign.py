@@ -6,10 +6,13 @@ usage:
                                        the load checkpoints' stems (load_000 ...), from the effective config;
                                        with STAGE (probe, voxel or lbm) only those [workflow] gives that stage
   campaign.py stages BIN               the analysis stages built with the command line the workflow calls
-  campaign.py load-input OUT CONFIG    the arguments of `aniso-dem load` that continue an interrupted run
-  campaign.py check CONFIG BIN         validates the whole config before any stage runs: every built stage
+  campaign.py load-input OUT SETTINGS  the arguments of `aniso-dem load` that continue an interrupted run
+  campaign.py check CONFIG BIN [SETTINGS]
+                                       validates the whole config before any stage runs: every built stage
                                        reads its own section (`--print-config`, the stage's own validator)
-                                       and the [workflow] section is checked against the checkpoints
+                                       and the [workflow] section is checked against the checkpoints; with
+                                       SETTINGS (a run's settings/ folder), each stage's effective settings are
+                                       written there as <stage>.json, rewritten only when they change
   campaign.py resources CONFIG         the SLURM resources of [workflow.resources] as JSON, validated
   campaign.py realisation CONFIG K OUT writes OUT, the config of realisation K (1, 2, ...) of CONFIG:
                                        CONFIG itself for K = 1, else with dem.seed raised by K - 1
@@ -44,10 +47,17 @@ A run folder keeps each stage's files in a folder of its own (docs/user-guide.md
 folder"): dem/ (prepared.h5, load_NNN.h5, history), fabric/, probe/, voxel/, lbm/, beside
 figures/, logs/, slurm/ and report.md.
 
-`load-input OUT` (OUT the DEM's folder) resumes from the newest checkpoint of this run that history.h5
-already covers (history.h5 is rewritten just after each checkpoint, so a kill
-between the two leaves the newer checkpoint uncovered) and that is newer than
-prepared.h5 and the config; where the checkpoints are relaxed copies
+The Makefile's stages depend on their own SETTINGS/<stage>.json (the values the stage's
+--print-config gives, comments left out), not on the config file: editing
+[lbm] reruns the flows, not the DEM, and a comment or a [workflow] change reruns nothing but
+what it selects anew. A settings file that is new (the first run, or a run folder older than
+these files) is dated as the config file, so that results newer than the config stay valid
+(the run folder's settings/ also records what each stage ran with).
+
+`load-input OUT SETTINGS` (OUT the DEM's folder, SETTINGS the DEM's settings file, or the config)
+resumes from the newest checkpoint of this run that history.h5 already covers (history.h5 is
+rewritten just after each checkpoint, so a kill between the two leaves the newer checkpoint
+uncovered) and that is newer than prepared.h5 and SETTINGS; where the checkpoints are relaxed copies
 (dem.equilibrium.fork_checkpoints), from load_resume.h5, the loading's own state at the
 newest of them; otherwise it starts from prepared.h5, with --overwrite
 when files of an earlier (stale) loading run are there.
@@ -191,11 +201,42 @@ def checkpoint_stems(config, bin_dir, stage=None):
     return [f"load_{index:03d}" for index in indices]
 
 
-def check_config(config, bin_dir):
+def write_settings(path, text, dated_as):
+    """PATH holds TEXT, rewritten only when it differs, so that its time is when the stage's settings
+    last changed; a new file gets the time of DATED_AS (the config file)."""
+    try:
+        with open(path) as f:
+            if f.read() == text:
+                return
+        new = False
+    except FileNotFoundError:
+        new = True
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    with open(path + ".tmp", "w") as f:
+        f.write(text)
+    if new:
+        when = os.path.getmtime(dated_as)
+        os.utime(path + ".tmp", (when, when))
+    os.replace(path + ".tmp", path)
+
+
+def canonical_settings(stage, printed):
+    """The values of a stage's --print-config, without its comments (help texts change between
+    versions; the values are what the results depend on), as sorted JSON."""
+    try:
+        values = tomllib.loads(printed)
+    except tomllib.TOMLDecodeError as error:
+        fail(f"the {stage} stage's --print-config is not valid TOML ({error}):\n{printed}", FILE_ERROR)
+    return json.dumps(values, sort_keys=True, indent=1) + "\n"
+
+
+def check_config(config, bin_dir, settings_dir=None):
     """Every built stage validates its section of CONFIG, so that a misspelt [lbm] key stops the
-    campaign before hours of DEM rather than when the LBM job starts."""
+    campaign before hours of DEM rather than when the LBM job starts. With SETTINGS_DIR, what each
+    stage printed (its effective settings) is kept there as <stage>.json for the Makefile."""
     executables = [("dem", "dem/aniso-dem")] + list(STAGE_EXECUTABLES.items())
     checked = []
+    printed_settings = {}
     for stage, relative in executables:
         executable = os.path.join(bin_dir, relative)
         if not os.access(executable, os.X_OK):
@@ -207,7 +248,11 @@ def check_config(config, bin_dir):
                  f"before any stage runs:\n{printed.stderr.rstrip()}",
                  printed.returncode if printed.returncode in ERROR_KINDS else BAD_INPUT)
         checked.append(stage)
+        printed_settings[stage] = printed.stdout
     selected_indices(config, checkpoint_strains(config, bin_dir))
+    if settings_dir is not None:
+        for stage, text in printed_settings.items():
+            write_settings(os.path.join(settings_dir, f"{stage}.json"), canonical_settings(stage, text), config)
     print(f"campaign: {config} is valid for {', '.join(checked)} and [workflow]", file=sys.stderr)
 
 
@@ -242,7 +287,7 @@ def relaxed_copy(path):
         return False
 
 
-def load_input(out, config):
+def load_input(out, settings):
     prepared = os.path.join(out, "prepared.h5")
     history = os.path.join(out, "history.h5")
     start = ["--input", prepared]
@@ -255,7 +300,7 @@ def load_input(out, config):
         if stale:
             print(f"campaign: starting the load afresh, replacing {', '.join(stale)}", file=sys.stderr)
         return start
-    oldest_allowed = max(os.path.getmtime(prepared), os.path.getmtime(config))
+    oldest_allowed = max(os.path.getmtime(prepared), os.path.getmtime(settings))
     history_time = os.path.getmtime(history)
     newest = None
     index = 0
@@ -342,8 +387,8 @@ def main(argv):
         print(" ".join(checkpoint_stems(*argv[2:])))
     elif len(argv) == 3 and argv[1] == "stages":
         print(" ".join(usable_stages(argv[2])))
-    elif len(argv) == 4 and argv[1] == "check":
-        check_config(argv[2], argv[3])
+    elif len(argv) in (4, 5) and argv[1] == "check":
+        check_config(*argv[2:])
     elif len(argv) == 3 and argv[1] == "resources":
         print(json.dumps(sbatch_resources(argv[2])))
     elif len(argv) == 5 and argv[1] == "realisation":

@@ -265,15 +265,9 @@ Problem check_run_state(const Checkpoint& checkpoint) {
 
 template <class ErrorType>
 void throw_if_any(const mpi::Comm& comm, const Problem& local, const std::string& prefix) {
-  const std::vector<std::int64_t> failed = comm.all_gather(local ? 1 : 0);
-  for (int rank = 0; rank < static_cast<int>(failed.size()); ++rank) {
-    if (failed[static_cast<std::size_t>(rank)] == 0) continue;
-    const std::string text = local.value_or("");
-    std::vector<char> bytes(text.begin(), text.end());
-    comm.broadcast(bytes, rank);
-    throw ErrorType(prefix + std::string(bytes.begin(), bytes.end()) +
-                    (comm.size() > 1 ? " (found on rank " + std::to_string(rank) + ")" : ""));
-  }
+  if (const auto problem = mpi::first_problem(comm, local))
+    throw ErrorType(prefix + problem->text +
+                    (comm.size() > 1 ? " (found on rank " + std::to_string(problem->rank) + ")" : ""));
 }
 
 // ---- Writing

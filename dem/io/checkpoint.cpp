@@ -1,6 +1,7 @@
 #include "dem/io/checkpoint.hpp"
 
 #include "common/error.hpp"
+#include "common/mpi.hpp"
 #include "common/units.hpp"
 #include "dem/io/parameters.hpp"
 
@@ -8,6 +9,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <string>
 
 namespace aniso::dem::io {
 
@@ -79,29 +82,43 @@ namespace {
 
 // The particle rows a simulation can start from: at least one particle, positive sizes, masses
 // and inertias, and aspect ratios the shapes support (h5::read_checkpoint has already refused
-// positions outside the cell, for every stage).
-void check_particle_rows(const h5::Checkpoint& checkpoint, const std::string& path) {
+// positions outside the cell, for every stage). Of a slab read each rank checks its own rows, so
+// the ranks agree on the first bad row (the lowest rank's) and all fail with it.
+std::optional<std::string> first_bad_particle_row(const h5::Checkpoint& checkpoint, const std::string& path) {
   const auto& rows = checkpoint.particles;
   const bool slab = checkpoint.share == h5::RowShare::slab; // rows of a slab: row number = id
-  if (!slab && rows.size() == 0) throw FileError(path + ": /particles: no particles");
+  if (!slab && rows.size() == 0) return path + ": /particles: no particles";
   const config::Range aspect = key_range("dem.particles.aspect_ratio");
   for (std::size_t k = 0; k < rows.size(); ++k) {
-    const auto refuse = [&](const char* dataset, const std::string& what) {
-      throw FileError(fmt::format("{}: /particles/{}: row {} (particle id {}): {}", path, dataset,
-                                  slab ? rows.id[k] : k, rows.id[k], what));
+    const auto refusal = [&](const char* dataset, const std::string& what) {
+      return fmt::format("{}: /particles/{}: row {} (particle id {}): {}", path, dataset,
+                         slab ? rows.id[k] : k, rows.id[k], what);
     };
-    if (!(rows.diameter[k] > 0.0)) refuse("diameter", fmt::format("{:g}, expected > 0", rows.diameter[k]));
-    if (!(rows.mass[k] > 0.0)) refuse("mass", fmt::format("{:g}, expected > 0", rows.mass[k]));
-    if (!(rows.inertia[k].minCoeff() > 0.0)) refuse("inertia", "a principal moment is not > 0");
+    if (!(rows.diameter[k] > 0.0))
+      return refusal("diameter", fmt::format("{:g}, expected > 0", rows.diameter[k]));
+    if (!(rows.mass[k] > 0.0)) return refusal("mass", fmt::format("{:g}, expected > 0", rows.mass[k]));
+    if (!(rows.inertia[k].minCoeff() > 0.0)) return refusal("inertia", "a principal moment is not > 0");
     if (!aspect.contains(rows.aspect_ratio[k]))
-      refuse("aspect_ratio", fmt::format("{:g}, expected {}", rows.aspect_ratio[k], aspect.describe()));
+      return refusal("aspect_ratio",
+                     fmt::format("{:g}, expected {}", rows.aspect_ratio[k], aspect.describe()));
   }
+  return std::nullopt;
+}
+
+void check_particle_rows(const h5::Checkpoint& checkpoint, const std::string& path, const mpi::Comm& comm) {
+  const std::optional<std::string> problem = first_bad_particle_row(checkpoint, path);
+  if (checkpoint.share != h5::RowShare::slab) {
+    if (problem) throw FileError(*problem); // every rank holds every row and finds the same one
+    return;
+  }
+  if (const auto first = mpi::first_problem(comm, problem))
+    throw FileError(first->text + (comm.size() > 1 ? fmt::format(" (found on rank {})", first->rank) : ""));
 }
 
 } // namespace
 
 Simulation from_checkpoint(const h5::Checkpoint& checkpoint, const std::string& path, const mpi::Comm& comm) {
-  check_particle_rows(checkpoint, path);
+  check_particle_rows(checkpoint, path, comm);
   const auto& rows = checkpoint.particles;
   data::Particles particles;
   particles.resize(rows.size());

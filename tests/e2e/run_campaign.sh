@@ -22,8 +22,12 @@ for f in dem/prepared.h5 dem/load_000.h5 dem/load_001.h5 dem/load_002.h5 dem/his
          lbm/permeability_image_load_000.h5 lbm/permeability_image_load_002.h5 fabric/fabric.h5 fabric/fabric_series.h5; do
   [ -s "$run/$f" ] || fail "missing output $f"
 done
-[ "$(ls "$run")" = "$(printf '%s\n' dem fabric figures lbm logs probe report.md voxel)" ] \
-  || fail "the run folder holds more than the stage folders, figures, logs and report.md: $(ls "$run")"
+[ "$(ls "$run")" = "$(printf '%s\n' dem fabric figures lbm logs probe report.md settings voxel)" ] \
+  || fail "the run folder holds more than the stage folders, figures, logs, settings and report.md: $(ls "$run")"
+# Each stage's settings as it ran with them (the Makefile's stages depend on these, not on the config).
+for stage in dem fabric probe voxel lbm; do
+  [ -s "$run/settings/$stage.json" ] || fail "missing settings/$stage.json"
+done
 ! grep -q 'campaign: skipping' "$work/campaign.log" || fail "the campaign skipped a stage: $(grep 'skipping' "$work/campaign.log")"
 # Each stage run keeps its own log in logs/, and its lines are prefixed with the run's name there
 # and in the campaign's output.

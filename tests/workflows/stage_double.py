@@ -3,14 +3,18 @@
 workflow's job plumbing (arrays, dependencies, file names) before the real
 stage exists. It computes nothing: each "result" is a text file saying which
 command and which SLURM job and array task wrote it, and from which inputs.
-Only tests/workflows/slurm_campaign.sh uses it, from a throw-away BIN folder.
+Only the workflow tests use it, from a throw-away BIN folder. --print-config prints the
+stage's section of the config, as a real stage prints its effective settings (campaign.py check
+keeps them in the run's settings/ folder).
 
 usage: stage_double.py STAGE [fork|collect|series] --config F --set STAGE.output_dir=OUT --input FILE...
                        [--fork K] [--direction D] [--probe FILE...] [--voids FILE...] [--permeability FILE...]
 """
 import argparse
+import json
 import os
 import sys
+import tomllib
 
 
 def stem(path):
@@ -32,6 +36,17 @@ def record(path, args, inputs):
     os.replace(path + ".part", path)
 
 
+def print_table(name, table):
+    """TOML of a table of scalars, lists and tables (JSON writes their values as TOML does)."""
+    print(f"[{name}]")
+    for key, value in table.items():
+        if not isinstance(value, dict):
+            print(f"{key} = {json.dumps(value)}")
+    for key, value in table.items():
+        if isinstance(value, dict):
+            print_table(f"{name}.{key}", value)
+
+
 def main():
     parser = argparse.ArgumentParser(usage=__doc__)
     parser.add_argument("stage", choices=["fabric", "probe", "voxel", "lbm"])
@@ -43,10 +58,15 @@ def main():
     parser.add_argument("--direction", type=int)
     for results in ("--probe", "--voids", "--permeability"):
         parser.add_argument(results, nargs="+", default=[])
-    parser.add_argument("--print-config", action="store_true")  # campaign.py check: accepts any config
+    parser.add_argument("--print-config", action="store_true")
     parser.add_argument("--log-level")
     args = parser.parse_args()
-    if args.print_config:
+    if args.print_config:  # campaign.py check: accepts any config
+        section = {}
+        if args.config:
+            with open(args.config, "rb") as f:
+                section = tomllib.load(f).get(args.stage, {})
+        print_table(args.stage, section)
         return
     settings = dict(s.split("=", 1) for s in args.set)
     out = settings[f"{args.stage}.output_dir"]

@@ -5,6 +5,7 @@ workflows/slurm/submit.py --dry-run (the job plan, without a SLURM cluster).
 usage: test_campaign.py SOURCE_DIR BUILD_DIR
 """
 import glob
+import json
 import os
 import re
 import subprocess
@@ -346,6 +347,80 @@ class WholeConfigCheck(unittest.TestCase):
                                      capture_output=True, text=True)
             self.assertEqual(printed.returncode, 0, f"{stage}: {printed.stderr}")
             self.assertIn(f"[{stage}", printed.stdout, stage)
+
+
+class StageSettings(unittest.TestCase):
+    """Each stage's targets depend on its own effective settings (the run's settings/<stage>.json),
+    not on the config file: editing [lbm] reruns the flows and what reads them, never the DEM."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        folder = self.dir.name
+        self.bin = os.path.join(folder, "bin")
+        os.mkdir(self.bin)
+        fake_bin(self.bin, doubles=["fabric", "probe", "voxel", "lbm"])
+        self.out = os.path.join(folder, "run")
+        self.config = os.path.join(folder, "c.toml")
+        with open(os.path.join(WORKFLOWS, "configs", "e2e.toml")) as f:
+            self.text = f.read()
+        self.edit("", 1000)
+        self.variables = [f"CONFIG={self.config}", f"OUT={self.out}", f"BIN={self.bin}"]
+        # A finished run: every file of the job plan, written in the plan's (dependency) order.
+        plan = subprocess.run(["make", "-s", "-C", WORKFLOWS, "slurm-plan", *self.variables], capture_output=True,
+                              text=True)
+        self.assertEqual(plan.returncode, 0, plan.stderr)
+        when = 2000
+        for line in plan.stdout.splitlines():
+            _, tasks, _, _, *targets = line.split()
+            for k in range(int(tasks)):
+                for target in targets:
+                    os.makedirs(os.path.dirname(target), exist_ok=True)
+                    touch(target.replace("{task}", str(k)), when)
+                    when += 1
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def edit(self, addition, when):
+        with open(self.config, "w") as f:
+            f.write(self.text + addition)
+        os.utime(self.config, (when, when))
+
+    def steps(self):
+        """The kinds of step that submit.py --dry-run finds out of date (it asks make -q of each step's
+        files; the report, whose figures this run lacks, is always among them and left out)."""
+        result = subprocess.run([sys.executable, os.path.join(WORKFLOWS, "slurm", "submit.py"), "--config",
+                                 self.config, "--out", self.out, "--bin", self.bin, "--dry-run"],
+                                capture_output=True, text=True)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        kinds = {re.sub(r"-load_\d+$", "", name) for name, _ in submitted_plan(result.stdout)}
+        return sorted(kinds - {"report"})
+
+    def settings(self, stage):
+        with open(os.path.join(self.out, "settings", f"{stage}.json")) as f:
+            return json.load(f)
+
+    def test_a_finished_run_is_up_to_date(self):
+        self.assertEqual(self.steps(), [])
+        self.assertEqual(self.settings("lbm"), {"lbm": {}})  # what the stage printed for the config
+        dem = self.settings("dem")["dem"]  # the real aniso-dem's values, defaults included, no help texts
+        self.assertEqual((dem["seed"], dem["particles"]["count"], dem["material"]["friction"]), (3, 200, 0.5))
+        self.assertEqual(os.path.getmtime(os.path.join(self.out, "settings", "dem.json")), 1000)
+
+    def test_a_comment_reruns_nothing(self):
+        self.edit("\n# a note on this run\n", 3000)
+        self.assertEqual(self.steps(), [])
+
+    def test_lbm_settings_rerun_the_flows_and_their_readers_only(self):
+        self.edit("\n[lbm]\ntau = 0.8\n", 3000)
+        self.assertEqual(self.steps(), ["lbm", "lbm-collect", "series"])
+        self.assertEqual(self.settings("lbm"), {"lbm": {"tau": 0.8}})
+        self.assertEqual(os.path.getmtime(os.path.join(self.out, "settings", "voxel.json")), 1000)
+
+    def test_dem_settings_rerun_everything(self):
+        self.edit("\n".join(["", "[dem.material]", "friction = 0.45", ""]), 3000)
+        self.assertEqual(self.steps(), ["fabric", "lbm", "lbm-collect", "load", "prepare", "probe", "probe-collect",
+                                        "series", "voxel"])
 
 
 class SubmitDryRun(unittest.TestCase):

@@ -94,7 +94,9 @@ def campaign_facts(args):
             fail(f"campaign.py {' '.join(words)} failed")
         return result.stdout.strip()
 
-    ask("check", args.config, args.bin)  # every stage's section, before any job is submitted
+    # Every stage's section, before any job is submitted; each stage's effective settings go to the
+    # run's settings/ folder, which the jobs' make compares its targets with (workflows/Makefile).
+    ask("check", args.config, args.bin, os.path.join(args.out, "settings"))
     facts = {"CHECKPOINTS": ask("checkpoints", args.config, args.bin), "STAGES": ask("stages", args.bin)}
     for stage in ("probe", "voxel", "lbm"):  # the checkpoints the config's [workflow] gives each stage
         facts[f"{stage.upper()}_CHECKPOINTS"] = ask("checkpoints", args.config, args.bin, stage)
