@@ -6,6 +6,7 @@
 #                    any campaign (paths from this folder), resumed where it stopped
 #   make paper       the paper's study: four shapes at paper size, every stage, the paper's figures and a
 #                    generated comparison (runs/paper; REALISATIONS=N seeds per shape; hours: see README)
+#   make paper-status  where each run of `make paper` stands (files written per kind of step)
 #   make test-long   the long tests only (label `long`)
 #   make format      rewrite all C++ sources with clang-format
 #   make clean       remove the build folder
@@ -22,7 +23,7 @@ TEST_JOBS  ?= 2
 # Open MPI refuses to run as root unless told it may (containers, CI machines).
 MPI_ENV := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-.PHONY: all demo campaign paper paper-export test test-long format clean deps-test deps-demo configure build build-stages
+.PHONY: all demo campaign paper paper-status paper-export test test-long format clean deps-test deps-demo configure build build-stages
 
 all: build
 
@@ -59,6 +60,10 @@ PAPER_OUT ?= runs/paper
 paper: deps-demo
 	$(MAKE) build-stages
 	$(MPI_ENV) $(MAKE) -C workflows paper BIN=$(abspath $(BUILD)) PAPER_OUT=$(abspath $(PAPER_OUT))
+
+# Where each run of the study stands (files written per kind of step).
+paper-status:
+	$(MPI_ENV) $(MAKE) -s -C workflows paper-status BIN=$(abspath $(BUILD)) PAPER_OUT=$(abspath $(PAPER_OUT))
 
 # Its small results into docs/paper-size (per shape) once it has finished (workflows/paper_export.py).
 paper-export:

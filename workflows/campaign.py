@@ -14,6 +14,8 @@ usage:
                                        SETTINGS (a run's settings/ folder), each stage's effective settings are
                                        written there as <stage>.json, rewritten only when they change
   campaign.py resources CONFIG         the SLURM resources of [workflow.resources] as JSON, validated
+  campaign.py status OUT N             what the run OUT has written so far, per kind of step: reads the job
+                                       plan (`make slurm-plan` lines) on stdin; N is the number of checkpoints
   campaign.py realisation CONFIG K OUT writes OUT, the config of realisation K (1, 2, ...) of CONFIG:
                                        CONFIG itself for K = 1, else with dem.seed raised by K - 1
                                        (make paper REALISATIONS=N); rewritten only when it changes
@@ -382,6 +384,34 @@ def write_realisation(config, index, out):
     print(f"campaign: {out} is realisation {k} of {config} (dem.seed = {seed})", file=sys.stderr)
 
 
+def run_status(out, n_checkpoints, plan_lines):
+    """Lines saying, per kind of step of the plan (prepare, load, probe, ...), how many steps (and
+    array tasks) have all their files: what is there, not whether it is up to date (make -q says that)."""
+    kinds = {}
+    for line in plan_lines:
+        words = line.split()
+        if len(words) < 5:
+            continue
+        name, tasks, targets = words[0], int(words[1]), words[4:]
+        kind = re.sub(r"-load_\d+$", "", name)
+        files_of_task = [[t.replace("{task}", str(k)) for t in targets] for k in range(tasks)]
+        done_tasks = sum(all(os.path.exists(f) for f in files) for files in files_of_task)
+        counts = kinds.setdefault(kind, [0, 0, 0, 0])  # steps done, steps, tasks done, tasks
+        counts[0] += done_tasks == tasks
+        counts[1] += 1
+        counts[2] += done_tasks
+        counts[3] += tasks
+    dem = os.path.join(out, "dem")
+    written = [n for n in (os.listdir(dem) if os.path.isdir(dem) else []) if re.fullmatch(r"load_\d{3,}\.h5", n)]
+    lines = [f"{out}:"]
+    for kind, (done, steps, tasks_done, tasks) in kinds.items():
+        detail = f" ({tasks_done}/{tasks} tasks)" if tasks > steps else ""
+        if kind == "load":
+            detail = f" ({len(written)} of {n_checkpoints} checkpoints written)"
+        lines.append(f"  {kind:<14} {done}/{steps}{detail}")
+    return lines
+
+
 def main(argv):
     if len(argv) in (4, 5) and argv[1] == "checkpoints":
         print(" ".join(checkpoint_stems(*argv[2:])))
@@ -391,6 +421,8 @@ def main(argv):
         check_config(*argv[2:])
     elif len(argv) == 3 and argv[1] == "resources":
         print(json.dumps(sbatch_resources(argv[2])))
+    elif len(argv) == 4 and argv[1] == "status":
+        print("\n".join(run_status(argv[2], int(argv[3]), sys.stdin.read().splitlines())))
     elif len(argv) == 5 and argv[1] == "realisation":
         write_realisation(*argv[2:])
     elif len(argv) == 4 and argv[1] == "load-input":

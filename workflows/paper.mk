@@ -16,7 +16,7 @@ PAPER_SHAPES  ?= spheres ovoids-0.8 ovoids-0.625 ovoids-0.5
 PAPER_CONFIGS ?= configs
 REALISATIONS  ?= 1
 
-paper_goals := paper paper-runs paper-figures paper-export
+paper_goals := paper paper-runs paper-figures paper-export paper-status
 paper_realisations := $(shell seq 1 $(REALISATIONS) 2>/dev/null)
 ifneq ($(filter $(paper_goals),$(MAKECMDGOALS)),)
 ifeq ($(strip $(paper_realisations)),)
@@ -63,6 +63,11 @@ $(PAPER_REPORT): $(foreach r,$(paper_runs),$(PAPER_OUT)/$(r)/report.md) $(wildca
 	  $(foreach r,$(paper_runs),$(call paper_label,$(r))=$(abspath $(PAPER_OUT)/$(r)))
 
 paper-figures: $(PAPER_REPORT)
+
+# Where each run of the study stands (the `status` of workflows/Makefile, run by run).
+paper-status:
+	@$(foreach r,$(paper_runs),test ! -f $(call paper_config,$(r)) && echo "$(abspath $(PAPER_OUT)/$(r)): not started" || \
+	  $(MAKE) -s --no-print-directory status CONFIG=$(abspath $(call paper_config,$(r))) OUT=$(abspath $(PAPER_OUT)/$(r));)
 
 # The run's small results where the docs keep them (paper_export.py): per run its history, fabric
 # series, probes, static states, void and permeability series, preparation log and stage times,

@@ -4,7 +4,8 @@
 # every figure family and fills the comparison's numbers from the runs; that a paper campaign
 # killed (SIGKILL) during its first load resumes on a rerun without preparing again and ends with
 # the uninterrupted campaign's results bit for bit; that `make paper-export` copies the small results
-# (history, fabric, probes, static states, voids, stage times, comparison and figures); that a rerun
+# (history, fabric, probes, static states, voids, stage times, comparison and figures); that
+# `make paper-status` counts every step of the finished study as written; that a rerun
 # finds everything up to date; and
 # that a bad REALISATIONS or a shape without a config is refused before anything runs.
 #
@@ -62,6 +63,15 @@ for heading in ("Table 2", "Figs. C123 and A", "Voids (section 3.4)"):
     assert f"## {heading}" in text, heading
 print("paper e2e: comparison filled for", ", ".join(rows))
 PY
+
+# make paper-status on the finished study: every kind of step of both runs has all its files.
+paper paper-status PAPER_OUT="$reference" >"$work/status.log" 2>"$work/status.err" \
+  || fail "make paper-status failed: $(tail -5 "$work/status.err")"
+[ "$(grep -c '^  report  *1/1$' "$work/status.log")" = 2 ] || fail "paper-status: not two finished runs: $(cat "$work/status.log")"
+[ "$(grep -c '^  load  *1/1 (3 of 3 checkpoints written)$' "$work/status.log")" = 2 ] \
+  || fail "paper-status: the loads' checkpoints: $(cat "$work/status.log")"
+awk '$2 ~ /^[0-9]+\/[0-9]+$/ { split($2, n, "/"); if (n[1] != n[2]) missing = 1 } END { exit missing }' "$work/status.log" \
+  || fail "paper-status counts a step without its files in a finished study: $(cat "$work/status.log")"
 
 # The export of the small results where the docs keep them (make paper-export).
 export="$work/export"

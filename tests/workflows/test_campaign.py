@@ -407,6 +407,21 @@ class StageSettings(unittest.TestCase):
         self.assertEqual((dem["seed"], dem["particles"]["count"], dem["material"]["friction"]), (3, 200, 0.5))
         self.assertEqual(os.path.getmtime(os.path.join(self.out, "settings", "dem.json")), 1000)
 
+    def test_status_counts_what_the_run_has_written(self):
+        os.remove(os.path.join(self.out, "probe", "probe_load_001_fork3.h5"))
+        for k in range(2):  # a load stopped after its second checkpoint (load.done is a plan file)
+            touch(os.path.join(self.out, "dem", f"load_00{k}.h5"), 2500)
+        status = subprocess.run(["make", "-s", "-C", WORKFLOWS, "status", *self.variables], capture_output=True,
+                                text=True)
+        self.assertEqual(status.returncode, 0, status.stderr)
+        lines = {line.split()[0]: line.split(None, 1)[1] for line in status.stdout.splitlines()[1:]}
+        self.assertEqual(status.stdout.splitlines()[0], f"{self.out}:")
+        self.assertEqual(lines["prepare"], "1/1")
+        self.assertEqual(lines["load"], "1/1 (2 of 3 checkpoints written)")
+        self.assertEqual(lines["probe"], "2/3 (20/21 tasks)")
+        self.assertEqual(lines["lbm"], "3/3 (9/9 tasks)")
+        self.assertEqual(lines["report"], "1/1")
+
     def test_a_comment_reruns_nothing(self):
         self.edit("\n# a note on this run\n", 3000)
         self.assertEqual(self.steps(), [])
