@@ -7,6 +7,7 @@
 #   make paper       the paper's study: four shapes at paper size, every stage, the paper's figures and a
 #                    generated comparison (runs/paper; REALISATIONS=N seeds per shape; hours: see README)
 #   make paper-status  where each run of `make paper` stands (files written per kind of step)
+#   make paper-export-partial  what a running `make paper` has finished, into docs/paper-size/in-progress
 #   make test-long   the long tests only (label `long`)
 #   make format      rewrite all C++ sources with clang-format
 #   make clean       remove the build folder
@@ -23,7 +24,7 @@ TEST_JOBS  ?= 2
 # Open MPI refuses to run as root unless told it may (containers, CI machines).
 MPI_ENV := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-.PHONY: all demo campaign paper paper-status paper-export test test-long format clean deps-test deps-demo configure build build-stages
+.PHONY: all demo campaign paper paper-status paper-export paper-export-partial test test-long format clean deps-test deps-demo configure build build-stages
 
 all: build
 
@@ -60,6 +61,12 @@ PAPER_OUT ?= runs/paper
 paper: deps-demo
 	$(MAKE) build-stages
 	$(MPI_ENV) $(MAKE) -C workflows paper BIN=$(abspath $(BUILD)) PAPER_OUT=$(abspath $(PAPER_OUT))
+
+# What a study still running has finished so far (its runs' small results, of the checkpoints done).
+PAPER_PARTIAL ?= docs/paper-size/in-progress
+paper-export-partial:
+	$(MAKE) -C workflows paper-export-partial BIN=$(abspath $(BUILD)) PAPER_OUT=$(abspath $(PAPER_OUT)) \
+	  PAPER_EXPORT=$(abspath $(PAPER_PARTIAL))
 
 # Where each run of the study stands (files written per kind of step).
 paper-status:

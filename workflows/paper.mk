@@ -16,7 +16,7 @@ PAPER_SHAPES  ?= spheres ovoids-0.8 ovoids-0.625 ovoids-0.5
 PAPER_CONFIGS ?= configs
 REALISATIONS  ?= 1
 
-paper_goals := paper paper-runs paper-figures paper-export paper-status
+paper_goals := paper paper-runs paper-figures paper-export paper-export-partial paper-status
 paper_realisations := $(shell seq 1 $(REALISATIONS) 2>/dev/null)
 ifneq ($(filter $(paper_goals),$(MAKECMDGOALS)),)
 ifeq ($(strip $(paper_realisations)),)
@@ -74,4 +74,10 @@ paper-status:
 # then the comparison and its figures; a folder per shape (per shape and realisation with several).
 paper-export: $(PAPER_REPORT)
 	$(PYTHON) paper_export.py $(PAPER_OUT) $(PAPER_EXPORT) \
+	  $(foreach r,$(paper_runs),$(call paper_export_name,$(r))=$(abspath $(PAPER_OUT)/$(r)))
+
+# What a study still running has finished so far, into PAPER_EXPORT (give it a folder of its own,
+# e.g. PAPER_EXPORT=../docs/paper-size/make-paper-<date>): the same files, of the checkpoints done.
+paper-export-partial:
+	$(PYTHON) paper_export.py --partial $(PAPER_OUT) $(PAPER_EXPORT) \
 	  $(foreach r,$(paper_runs),$(call paper_export_name,$(r))=$(abspath $(PAPER_OUT)/$(r)))

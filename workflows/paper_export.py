@@ -23,7 +23,13 @@ EXPORT/NAME/:
 and EXPORT/comparison.md and EXPORT/figures/ from PAPER_OUT (paper_report.py's output).
 Files of an earlier export that this run does not make are left alone; every file it makes is replaced.
 
-usage: paper_export.py PAPER_OUT EXPORT NAME=RUN_FOLDER [NAME=RUN_FOLDER ...]
+With --partial (`make paper-export-partial`, for a study still running) it exports what is there:
+a run folder that does not exist yet is left out, a file not written yet (the history before the
+first checkpoint, the fabric series, the comparison and figures before the end) is skipped with a
+line saying so, and the series hold the checkpoints finished so far. A run on a host that may not
+keep its folders loses no finished piece this way.
+
+usage: paper_export.py [--partial] PAPER_OUT EXPORT NAME=RUN_FOLDER [NAME=RUN_FOLDER ...]
 """
 import csv
 import glob
@@ -48,11 +54,16 @@ def fail(message):
     sys.exit(f"paper_export.py: {message}")
 
 
-def copy(source, target):
+def copy(source, target, partial=False):
+    """Copies SOURCE to TARGET; a missing SOURCE fails, or with `partial` is skipped (False returned)."""
     if not os.path.exists(source):
+        if partial:
+            print(f"paper_export.py: {source} not written yet, skipped")
+            return False
         fail(f"{source} is missing: has the campaign finished?")
     shutil.copyfile(source, target + ".tmp")
     os.replace(target + ".tmp", target)
+    return True
 
 
 def write_rows(path, header, rows):
@@ -136,9 +147,9 @@ def stage_times(run, target):
     write_rows(target, ["stage", "wall_seconds", "ranks", "runs", "source"], rows)
 
 
-def export_run(name, run, folder):
+def export_run(name, run, folder, partial=False):
     os.makedirs(folder, exist_ok=True)
-    copy(os.path.join(run, "dem", "history.csv"), os.path.join(folder, "history.csv"))
+    copy(os.path.join(run, "dem", "history.csv"), os.path.join(folder, "history.csv"), partial)
     for stem in ("fabric_series", "fabric_series_correlations"):
         source = os.path.join(run, "fabric", f"{stem}.csv")
         if os.path.exists(source):
@@ -147,12 +158,14 @@ def export_run(name, run, folder):
     static_states(run, os.path.join(folder, "static_states.csv"))
     if glob.glob(os.path.join(run, "voxel", "voids_load_*.h5")):
         csv_files([run, folder])
-    copy(os.path.join(run, "logs", "prepare.log"), os.path.join(folder, "prepare.log"))
+    copy(os.path.join(run, "logs", "prepare.log"), os.path.join(folder, "prepare.log"), partial)
     stage_times(run, os.path.join(folder, "stage_times.csv"))
     print(f"paper_export.py: {name}: {run} -> {folder}")
 
 
 def main(argv):
+    partial = argv[:1] == ["--partial"]
+    argv = argv[1:] if partial else argv
     if len(argv) < 3 or any("=" not in a for a in argv[2:]):
         sys.exit(__doc__)
     paper_out, export = argv[0], argv[1]
@@ -160,8 +173,12 @@ def main(argv):
         name, run = argument.split("=", 1)
         if not re.fullmatch(r"[A-Za-z0-9._-]+", name):
             fail(f"'{name}' is not a folder name (letters, digits, '.', '_', '-')")
-        export_run(name, run, os.path.join(export, name))
-    copy(os.path.join(paper_out, "comparison.md"), os.path.join(export, "comparison.md"))
+        if partial and not os.path.isdir(run):
+            print(f"paper_export.py: {name}: {run} not started, left out")
+            continue
+        export_run(name, run, os.path.join(export, name), partial)
+    if not copy(os.path.join(paper_out, "comparison.md"), os.path.join(export, "comparison.md"), partial):
+        return
     figures = os.path.join(export, "figures")
     os.makedirs(figures, exist_ok=True)
     for path in sorted(glob.glob(os.path.join(paper_out, "figures", "*"))):

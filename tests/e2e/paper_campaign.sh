@@ -5,7 +5,8 @@
 # killed (SIGKILL) during its first load resumes on a rerun without preparing again and ends with
 # the uninterrupted campaign's results bit for bit; that `make paper-export` copies the small results
 # (history, fabric, probes, static states, voids, stage times, comparison and figures); that
-# `make paper-status` counts every step of the finished study as written; that a rerun
+# `make paper-status` counts every step of the finished study as written; that
+# `make paper-export-partial` exports what a killed study finished; that a rerun
 # finds everything up to date; and
 # that a bad REALISATIONS or a shape without a config is refused before anything runs.
 #
@@ -117,6 +118,17 @@ kill_when_written "$killed/spheres/r1/dem/load_resume.h5" "$work/killed.log" \
   make -s -C "$source_dir/workflows" paper BIN="$build_dir" PAPER_CONFIGS="$source_dir/tests/e2e/paper" \
   PAPER_SHAPES="spheres ovoids-0.5" PAPER_OUT="$killed"
 [ ! -e "$killed/spheres/r1/dem/load.done" ] || fail "the load finished before it was killed; nothing was interrupted"
+# The partial export of the killed study: what it finished (the spheres' preparation, the checkpoints
+# written), nothing it did not, and no comparison yet; a shape not started is left out.
+paper paper-export-partial PAPER_OUT="$killed" PAPER_EXPORT="$work/partial" >"$work/partial.log" 2>&1 \
+  || fail "make paper-export-partial failed: $(tail -5 "$work/partial.log")"
+[ -s "$work/partial/spheres/prepare.log" ] || fail "the partial export lacks the spheres' prepare.log"
+written=$(ls "$killed/spheres/r1/dem" | grep -c '^load_[0-9]*\.h5$' || true)
+[ "$(($(wc -l < "$work/partial/spheres/static_states.csv") - 1))" = "$written" ] \
+  || fail "the partial static_states.csv does not list the $written checkpoints written"
+[ ! -e "$work/partial/comparison.md" ] || fail "the partial export wrote a comparison of an unfinished study"
+if [ -d "$killed/ovoids-0.5/r1" ]; then [ -d "$work/partial/ovoids-0.5" ] || fail "ovoids-0.5 started but not exported"
+else grep -q "ovoids-0.5: .* not started, left out" "$work/partial.log" || fail "no line on the shape not started"; fi
 paper paper PAPER_OUT="$killed" >"$work/rerun.log" 2>&1 || fail "the rerun after the kill failed: $(tail -5 "$work/rerun.log")"
 grep -q "resuming the interrupted load from $killed/spheres/r1/dem/load_resume.h5" "$work/rerun.log" \
   || fail "the rerun did not resume the load from a checkpoint: $(grep -i 'load' "$work/rerun.log" | head -3)"
