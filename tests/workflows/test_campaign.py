@@ -8,6 +8,7 @@ import glob
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -353,22 +354,25 @@ class StageSettings(unittest.TestCase):
     """Each stage's targets depend on its own effective settings (the run's settings/<stage>.json),
     not on the config file: editing [lbm] reruns the flows and what reads them, never the DEM."""
 
-    def setUp(self):
-        self.dir = tempfile.TemporaryDirectory()
-        folder = self.dir.name
-        self.bin = os.path.join(folder, "bin")
-        os.mkdir(self.bin)
-        fake_bin(self.bin, doubles=["fabric", "probe", "voxel", "lbm"])
-        self.out = os.path.join(folder, "run")
-        self.config = os.path.join(folder, "c.toml")
+    @classmethod
+    def setUpClass(cls):
+        # A finished run, made once: every file of the job plan, written in the plan's (dependency)
+        # order. Each test works on a copy (copytree keeps the files' times).
+        cls.template = tempfile.TemporaryDirectory()
+        folder = cls.template.name
+        os.mkdir(os.path.join(folder, "bin"))
+        fake_bin(os.path.join(folder, "bin"), doubles=["fabric", "probe", "voxel", "lbm"])
         with open(os.path.join(WORKFLOWS, "configs", "e2e.toml")) as f:
-            self.text = f.read()
-        self.edit("", 1000)
-        self.variables = [f"CONFIG={self.config}", f"OUT={self.out}", f"BIN={self.bin}"]
-        # A finished run: every file of the job plan, written in the plan's (dependency) order.
-        plan = subprocess.run(["make", "-s", "-C", WORKFLOWS, "slurm-plan", *self.variables], capture_output=True,
-                              text=True)
-        self.assertEqual(plan.returncode, 0, plan.stderr)
+            cls.text = f.read()
+        config = os.path.join(folder, "c.toml")
+        with open(config, "w") as f:
+            f.write(cls.text)
+        os.utime(config, (1000, 1000))
+        plan = subprocess.run(["make", "-s", "-C", WORKFLOWS, "slurm-plan", f"CONFIG={config}",
+                               f"OUT={os.path.join(folder, 'run')}", f"BIN={os.path.join(folder, 'bin')}"],
+                              capture_output=True, text=True)
+        if plan.returncode != 0:
+            raise RuntimeError(plan.stderr)
         when = 2000
         for line in plan.stdout.splitlines():
             _, tasks, _, _, *targets = line.split()
@@ -377,6 +381,20 @@ class StageSettings(unittest.TestCase):
                     os.makedirs(os.path.dirname(target), exist_ok=True)
                     touch(target.replace("{task}", str(k)), when)
                     when += 1
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.template.cleanup()
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        folder = os.path.join(self.dir.name, "t")
+        self.out = os.path.join(folder, "run")
+        # Nothing the run holds names its folder, so a copy is the same finished run.
+        shutil.copytree(self.template.name, folder, symlinks=True)
+        self.bin = os.path.join(folder, "bin")
+        self.config = os.path.join(folder, "c.toml")
+        self.variables = [f"CONFIG={self.config}", f"OUT={self.out}", f"BIN={self.bin}"]
 
     def tearDown(self):
         self.dir.cleanup()
