@@ -97,7 +97,8 @@ int stop_prepare(const CommandContext& context, const protocol::PrepareStop& sto
 
 } // namespace
 
-int run_prepare(const CommandContext& context, bool resume) {
+int run_prepare(const CommandContext& context, const PrepareOptions& options) {
+  const bool resume = options.resume;
   const auto start = Clock::now();
   const DemConfig& config = context.config;
   create_output_folder(config.output_dir);
@@ -108,7 +109,8 @@ int run_prepare(const CommandContext& context, bool resume) {
     context.logger->info("prepare --resume: {} pieces kept in {}{}", kept, config.output_dir,
                          kept == 0 ? ": nothing to continue from, preparing from the start" : "");
   }
-  const io::PreparePieces pieces(config.output_dir, provenance, context.comm);
+  const io::PreparePieces pieces(config.output_dir, provenance, context.comm,
+                                 60.0 * options.keep_every_minutes);
   install_stop_handler();
   protocol::PreparedAssembly prepared =
       protocol::prepare_assembly(config, context.logger, context.comm, pieces);
@@ -174,7 +176,7 @@ int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, co
   install_stop_handler();
   const protocol::LoadSummary summary =
       protocol::run_loading(simulation, config, config.output_dir, provenance, logger, options.resume, run_id,
-                            interrupted ? &*interrupted : nullptr);
+                            interrupted ? &*interrupted : nullptr, 60.0 * options.keep_every_minutes);
   protocol::log_timing(logger, summary.timing, summary.wall_seconds, context.comm.size(),
                        with_halo({phase_line("relaxation", summary.relaxation_steps, summary.steps,
                                              summary.relaxation_seconds, summary.wall_seconds),
@@ -244,9 +246,9 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
                                       config.particles.density, config.prepare.confining_pressure);
   if (!interrupted) protocol::with_loading_contacts(simulation, config, rate);
   install_stop_handler();
-  const protocol::Relaxation relaxed =
-      protocol::consolidate(simulation, config, rate, context.logger,
-                            {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr});
+  const protocol::Relaxation relaxed = protocol::consolidate(
+      simulation, config, rate, context.logger,
+      {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr, .keep = {}});
   const io::CheckpointLabels labels{checkpoint.rng_state, {}};
   if (relaxed.interrupted)
     return stop_relaxation(context, simulation, "consolidate", labels, provenance, output,
@@ -295,7 +297,7 @@ int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, c
   install_stop_handler();
   const protocol::Relaxation relaxed = protocol::relax_to_equilibrium(
       simulation, context.config.equilibrium, context.config.equilibrium.max_steps, context.logger, "relax",
-      {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr});
+      {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr, .keep = {}});
   const io::CheckpointLabels labels{checkpoint.rng_state, checkpoint.run_id};
   if (relaxed.interrupted)
     return stop_relaxation(context, simulation, "relax", labels, provenance, output, *relaxed.interrupted);

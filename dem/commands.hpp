@@ -24,14 +24,26 @@ struct CommandContext {
   mpi::Comm comm;
 };
 
+struct PrepareOptions {
+  bool resume = false; ///< continue from the pieces kept in dem.output_dir
+  /// How often the compaction or consolidation in progress is kept [min of wall time]; 0: at
+  /// every control update.
+  double keep_every_minutes = 20;
+};
+
 /// prepare: a dense isotropic assembly, written to <output_dir>/prepared.h5. Its finished pieces
-/// (dem/io/prepare_pieces.hpp) are kept in <output_dir> until then; on SIGTERM it stops with
-/// exit 143 and `resume` continues from them to the bits of an uninterrupted run.
-int run_prepare(const CommandContext& context, bool resume = false);
+/// (dem/io/prepare_pieces.hpp) are kept in <output_dir> until then, and the piece in progress
+/// every options.keep_every_minutes; on SIGTERM it stops with exit 143, keeping the piece in
+/// progress, and `resume` continues from them to the bits of an uninterrupted run (after a kill,
+/// from what was kept last).
+int run_prepare(const CommandContext& context, const PrepareOptions& options);
 
 struct LoadOptions {
   bool resume = false;    ///< continue the loading run whose checkpoint `input` is
   bool overwrite = false; ///< replace a loading run already in the output folder
+  /// How often the loading's state is kept as load_interrupted.h5 [min of wall time]; 0: at
+  /// every control update.
+  double keep_every_minutes = 20;
 };
 /// load: biaxial plane strain at constant mean stress from `checkpoint` (read from `input`).
 int run_load(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,

@@ -130,9 +130,29 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   load->add_flag(
       "--overwrite", load_options.overwrite,
       "replace the loading run already in dem.output_dir (its history and load_NNN.h5 are removed)");
-  bool resume_prepare = false;
-  prepare->add_flag("--resume", resume_prepare,
-                    "continue a prepare stopped on SIGTERM from the pieces it kept in dem.output_dir");
+  // How often prepare and load keep the state in progress, for a resume after a kill.
+  const CLI::Validator keep_minutes(
+      [](std::string& text) {
+        double minutes = 0;
+        return CLI::detail::lexical_cast(text, minutes) && minutes >= 0 ? std::string()
+                                                                        : "expected minutes, 0 or more";
+      },
+      "MINUTES");
+  dem::PrepareOptions prepare_options;
+  prepare->add_flag(
+      "--resume", prepare_options.resume,
+      "continue a prepare stopped on SIGTERM or killed from the pieces it kept in dem.output_dir");
+  prepare
+      ->add_option("--keep-every", prepare_options.keep_every_minutes,
+                   "keep the compaction or consolidation in progress every MINUTES of wall time, so that a "
+                   "prepare killed without SIGTERM loses no more (0: at every control update)")
+      ->check(keep_minutes)
+      ->capture_default_str();
+  load->add_option("--keep-every", load_options.keep_every_minutes,
+                   "keep the loading's state as load_interrupted.h5 (with the history) every MINUTES of wall "
+                   "time, so that a load killed without SIGTERM loses no more (0: at every control update)")
+      ->check(keep_minutes)
+      ->capture_default_str();
   prepare->fallthrough();
   load->fallthrough();
   if (auto code = cli::parse(app, argc, argv, comm)) return *code;
@@ -180,7 +200,7 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   if (relax->parsed()) return dem::run_relax(context, *checkpoint, input, output, resume_relaxation);
   if (consolidate->parsed())
     return dem::run_consolidate(context, *checkpoint, input, output, resume_relaxation);
-  if (prepare->parsed()) return dem::run_prepare(context, resume_prepare);
+  if (prepare->parsed()) return dem::run_prepare(context, prepare_options);
   return dem::run_load(context, *checkpoint, input, load_options);
 }
 

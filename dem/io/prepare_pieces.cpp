@@ -58,9 +58,11 @@ std::size_t check_prepare_folder(const std::string& folder, bool resume, const m
   return static_cast<std::size_t>(comm.max(static_cast<std::int64_t>(count))); // rank 0's, on every rank
 }
 
-PreparePieces::PreparePieces(std::string folder, h5::Provenance provenance, const mpi::Comm& comm)
+PreparePieces::PreparePieces(std::string folder, h5::Provenance provenance, const mpi::Comm& comm,
+                             double keep_interval_seconds)
     : folder_(std::move(folder)), provenance_(std::move(provenance)),
-      config_hash_(h5::content_hash_of_bytes(provenance_.config)), comm_(comm) {}
+      config_hash_(h5::content_hash_of_bytes(provenance_.config)), comm_(comm),
+      keep_interval_seconds_(keep_interval_seconds) {}
 
 std::string PreparePieces::path(const PieceName& piece) const {
   return fmt::format("{}/prepare_{}_{}_{}.h5", folder_, kind_name(piece.kind), piece.cycle, piece.refinement);
@@ -112,6 +114,14 @@ void PreparePieces::keep(const PieceName& piece, const Simulation& simulation,
                          const PieceRecord& record) const {
   write(path(piece), piece, simulation, record.rng_state,
         [&](h5::Group& group) { group.write_attribute("compaction_strain", record.compaction_strain); });
+  if (folder_.empty()) return;
+  // The piece supersedes its state in progress (kept on SIGTERM or by the keep clock).
+  run_on_root(comm_, [&] {
+    const std::string in_progress = interrupted_path(path(piece));
+    std::error_code error;
+    fs::remove(in_progress, error);
+    require_file(!error, fmt::format("prepare: cannot remove '{}': {}", in_progress, error.message()));
+  });
 }
 
 std::optional<KeptPiece> PreparePieces::find(const PieceName& piece) const {

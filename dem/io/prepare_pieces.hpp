@@ -16,6 +16,7 @@
 #include "dem/simulation.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -78,13 +79,18 @@ std::size_t check_prepare_folder(const std::string& folder, bool resume, const m
 class PreparePieces {
 public:
   /// `provenance` is written on every piece; its effective configuration is the one a kept
-  /// piece must have been made with.
-  PreparePieces(std::string folder, h5::Provenance provenance, const mpi::Comm& comm);
+  /// piece must have been made with. The compaction or consolidation in progress is kept, as a
+  /// SIGTERM stop keeps it, every `keep_interval_seconds` of wall time (common/keep_clock.hpp).
+  PreparePieces(std::string folder, h5::Provenance provenance, const mpi::Comm& comm,
+                double keep_interval_seconds);
   /// Keeps nothing and holds nothing: a prepare in memory alone (the tests').
   explicit PreparePieces(const mpi::Comm& comm) : comm_(comm) {}
 
+  /// How often the piece in progress is kept (infinity: never).
+  [[nodiscard]] double keep_interval_seconds() const { return keep_interval_seconds_; }
+
   [[nodiscard]] std::string path(const PieceName& piece) const;
-  /// Writes the piece atomically.
+  /// Writes the piece atomically, and removes what was kept of it in progress.
   void keep(const PieceName& piece, const Simulation& simulation, const PieceRecord& record) const;
   /// The piece if the folder holds it; InputError when it was made with another configuration.
   [[nodiscard]] std::optional<KeptPiece> find(const PieceName& piece) const;
@@ -111,6 +117,7 @@ private:
   h5::Provenance provenance_;
   std::string config_hash_; ///< of provenance_.config
   mpi::Comm comm_;
+  double keep_interval_seconds_ = INFINITY;
 
   [[nodiscard]] bool exists(const std::string& path) const;
   // A checkpoint of `simulation` at `path` with a /prepare group that `fill` completes, atomically.

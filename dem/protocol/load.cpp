@@ -1,6 +1,7 @@
 #include "dem/protocol/load.hpp"
 
 #include "common/error.hpp"
+#include "common/keep_clock.hpp"
 #include "common/stop_request.hpp"
 #include "dem/io/checkpoint.hpp"
 #include "dem/io/history.hpp"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 namespace aniso::dem::protocol {
 namespace {
@@ -232,6 +234,9 @@ public:
   // history rows and checkpoints ahead all follow from the strain, and a relaxation stopped in
   // from its /relaxation group (dem/io/relaxation_state.hpp).
   void write_interrupted(double strain, const std::string& why = "stopped on SIGTERM");
+  // The same file and the history, written between relaxations without stopping (the keep
+  // clock): what --resume continues from after a kill. Removed when the run ends.
+  void keep_state(double strain);
   bool relax(Simulation& simulation, const EquilibriumConfig& tolerances, const std::string& label,
              const RelaxationState* resume, io::InterruptedRelaxation where);
   // dem.equilibrium.fork_checkpoints: a copy of the state relaxed and written; false when it
@@ -250,6 +255,7 @@ private:
   SectionTimes output_{{"output"}}; // checkpoints and the history written, for the timing table
   LoadSummary summary_;
   std::optional<io::InterruptedRelaxation> interrupted_; // a relaxation stopped on SIGTERM
+  bool kept_ = false;                                    // keep_state wrote load_interrupted.h5
   Relaxation last_relaxation_;                           // recorded in a checkpoint relaxed for it
 };
 
@@ -307,8 +313,9 @@ io::InterruptedRelaxation where_in_load(const std::string& purpose, double strai
 
 bool LoadingRun::relax(Simulation& simulation, const EquilibriumConfig& tolerances, const std::string& label,
                        const RelaxationState* resume, io::InterruptedRelaxation where) {
-  const Relaxation relaxed = relax_to_equilibrium(simulation, tolerances, config_.equilibrium.max_steps,
-                                                  logger_, label, {.stoppable = true, .resume = resume});
+  const Relaxation relaxed =
+      relax_to_equilibrium(simulation, tolerances, config_.equilibrium.max_steps, logger_, label,
+                           {.stoppable = true, .resume = resume, .keep = {}});
   last_relaxation_ = relaxed;
   // A resumed relaxation's steps before the stop were counted by the run that stopped.
   const std::int64_t earlier = resume != nullptr ? resume->steps : 0;
@@ -416,6 +423,21 @@ void LoadingRun::write_interrupted(double strain, const std::string& why) {
                 summary_.interrupted_checkpoint);
 }
 
+void LoadingRun::keep_state(double strain) {
+  const std::string path = output_dir_ + "/load_interrupted.h5";
+  {
+    const ScopedSection writing(output_, 0);
+    io::write_interrupted_checkpoint(path, simulation_, labels_, provenance_, nullptr);
+    // After the state, so that the history always reaches it (workflows/campaign.py load-input
+    // takes the file only when the history is newer).
+    if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
+  }
+  kept_ = true;
+  logger_->info(
+      "load: kept at strain {:.6g} (step {}) in {}; after a kill, continue with --input {} --resume", strain,
+      simulation_.step_count(), path, path);
+}
+
 LoadSummary LoadingRun::finish(std::int64_t start_step, double wall_seconds) {
   summary_.final_strain = compressive_strain(simulation_);
   summary_.steps = simulation_.step_count() - start_step;
@@ -424,6 +446,9 @@ LoadSummary LoadingRun::finish(std::int64_t start_step, double wall_seconds) {
   history_.set_timing(summary_.timing, wall_seconds);
   if (simulation_.comm().is_root()) history_.write(output_dir_, provenance_, simulation_.step_count());
   simulation_.comm().barrier(); // the history is on disk before anyone reports success
+  std::error_code ignored;      // a kept file left behind is only older than the history
+  if (kept_ && summary_.interrupted_checkpoint.empty() && simulation_.comm().is_root())
+    std::filesystem::remove(output_dir_ + "/load_interrupted.h5", ignored); // the finished run supersedes it
   const auto& ratio = history_.column("stress_ratio");
   const auto& strain_11 = history_.column("strain_11");
   for (std::size_t r = 0; r < ratio.size(); ++r) {
@@ -439,8 +464,10 @@ LoadSummary LoadingRun::finish(std::int64_t start_step, double wall_seconds) {
 
 LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
                         const h5::Provenance& provenance, const Logger& logger, bool resuming,
-                        const std::string& run_id, const io::InterruptedRelaxation* interrupted) {
+                        const std::string& run_id, const io::InterruptedRelaxation* interrupted,
+                        double keep_every_seconds) {
   const auto& load = config.load;
+  KeepClock keep_clock(keep_every_seconds);
   const auto start_wall = std::chrono::steady_clock::now();
   const std::int64_t start_step = simulation.step_count();
   LoadingRun run(simulation, config, output_dir, provenance, logger, run_id);
@@ -525,10 +552,12 @@ LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const s
       }
       schedule.checkpoint_written();
     }
-    if ((load.quasi_static || simulation.at_control_update()) &&
-        stop_requested(simulation.comm(), simulation.step_count())) {
-      run.write_interrupted(strain);
-      break;
+    if (load.quasi_static || simulation.at_control_update()) {
+      if (keep_clock.due(simulation.comm())) run.keep_state(strain);
+      if (stop_requested(simulation.comm(), simulation.step_count())) {
+        run.write_interrupted(strain);
+        break;
+      }
     }
   }
   return run.finish(start_step,

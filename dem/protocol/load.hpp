@@ -12,6 +12,7 @@
 #include "dem/io/relaxation_state.hpp"
 #include "dem/simulation.hpp"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -43,11 +44,15 @@ void start_loading(Simulation& simulation, const DemConfig& config);
 /// belong to the same run and reach the checkpoint's step (InputError naming both otherwise).
 /// `interrupted`: the input's relaxation stopped on SIGTERM (its /relaxation group), which a
 /// resumed run continues first. SIGTERM, at a control update of the loading or of a relaxation,
-/// ends the run with load_interrupted.h5 (LoadSummary::interrupted_checkpoint).
+/// ends the run with load_interrupted.h5 (LoadSummary::interrupted_checkpoint). Every
+/// `keep_every_seconds` of wall time (common/keep_clock.hpp) the loading's state between
+/// relaxations is kept there too, with the history, without stopping: a run killed outright then
+/// resumes from it, not from its last numbered checkpoint.
 LoadSummary run_loading(Simulation& simulation, const DemConfig& config, const std::string& output_dir,
                         const h5::Provenance& provenance, const Logger& logger, bool resuming,
                         const std::string& run_id = {},
-                        const io::InterruptedRelaxation* interrupted = nullptr);
+                        const io::InterruptedRelaxation* interrupted = nullptr,
+                        double keep_every_seconds = INFINITY);
 
 /// Path of checkpoint number `index` in `folder`.
 std::string load_checkpoint_path(const std::string& folder, std::size_t index);

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/exact_sum.hpp"
+#include "common/keep_clock.hpp"
 #include "common/stop_request.hpp"
 #include "dem/data/spatial_order.hpp"
 #include "dem/io/parameters.hpp"
@@ -16,6 +17,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <span>
 
@@ -36,9 +38,11 @@ struct Compaction {
   bool stopped = false;
 };
 
+// `keep` sees the state at every control update where a SIGTERM stop could happen.
 Compaction compact_until_seized(Simulation& simulation, double rate, const PrepareConfig& prepare,
                                 const Logger& logger, const std::string& label, double expected_strain,
-                                const io::CompactionState* resume) {
+                                const io::CompactionState* resume,
+                                const std::function<void(const io::CompactionState&)>& keep) {
   Phase phase(simulation, label);
   io::CompactionState state;
   if (resume != nullptr) {
@@ -108,10 +112,10 @@ Compaction compact_until_seized(Simulation& simulation, double rate, const Prepa
                       label, strain_limit, p, prepare.seize_stress));
     }
     // Here, where the next update continues from the state above alone.
-    if (stop_requested(simulation.comm(), simulation.step_count())) {
-      state.steps = phase.steps();
+    state.steps = phase.steps();
+    if (keep) keep(state);
+    if (stop_requested(simulation.comm(), simulation.step_count()))
       return {phase.steps(), phase.seconds(), state, true};
-    }
   }
   simulation.set_control(model::fixed_cell(simulation.control()));
   return {phase.steps(), phase.seconds(), state, false};
@@ -299,9 +303,9 @@ class Protocol {
 public:
   Protocol(const DemConfig& config, const Logger& logger, const mpi::Comm& comm,
            const io::PreparePieces& pieces)
-      : config_(config), logger_(logger), pieces_(pieces), sizes_(config.seed, 0), placement_(config.seed, 1),
-        agitation_(config.seed, 2), refinement_stream_(config.seed, 4),
-        sparse_(sparse_assembly(config, sizes_, placement_, comm)) {
+      : config_(config), logger_(logger), pieces_(pieces), keep_clock_(pieces.keep_interval_seconds()),
+        sizes_(config.seed, 0), placement_(config.seed, 1), agitation_(config.seed, 2),
+        refinement_stream_(config.seed, 4), sparse_(sparse_assembly(config, sizes_, placement_, comm)) {
     sparse_.watch_equilibrium(true); // the seize test reads it at every control update
     const auto& pc = config.particles;
     rate_ = strain_rate_for_inertial_number(config.prepare.inertial_number, pc.d50, pc.density,
@@ -321,6 +325,7 @@ private:
   const DemConfig& config_;
   const Logger& logger_;
   const io::PreparePieces& pieces_;
+  KeepClock keep_clock_; ///< when the piece in progress is kept
   RandomStream sizes_, placement_, agitation_, refinement_stream_;
   Simulation sparse_;
   double rate_ = 0, rms_speed_ = 0;
@@ -378,8 +383,14 @@ Protocol::Seizure Protocol::seize(Simulation simulation, const io::PieceName& na
   }
   PrepareConfig compaction_settings = config_.prepare;
   compaction_settings.compaction_stop_void_ratio = stop_void_ratio_;
+  const auto keep = [&](const io::CompactionState& state) {
+    if (!keep_clock_.due(simulation.comm())) return;
+    const std::string path = pieces_.keep_stopped_compaction(name, simulation, streams(), state);
+    logger_->info("{}: kept at step {} in {} (--resume continues from it)", label, simulation.step_count(),
+                  path);
+  };
   const Compaction compaction = compact_until_seized(simulation, -rate_, compaction_settings, logger_, label,
-                                                     expected, stopped ? &stopped->state : nullptr);
+                                                     expected, stopped ? &stopped->state : nullptr, keep);
   compaction_seconds_ += compaction.seconds;
   if (compaction.stopped) {
     const std::string path = pieces_.keep_stopped_compaction(name, simulation, streams(), compaction.state);
@@ -463,8 +474,15 @@ Consolidated Protocol::consolidate_seized(Seized& seized) {
     // Consolidated with the friction and damping that loading will use, so that the relaxation
     // proves the state static with them (a state verified with heavier damping can creep without it).
     if (!stopped) with_loading_contacts(chosen, config_, rate_);
-    result.relaxation = consolidate(chosen, config_, rate_, logger_,
-                                    {.stoppable = true, .resume = stopped ? &stopped->state : nullptr});
+    const auto keep = [&](const RelaxationState& state) {
+      if (!keep_clock_.due(chosen.comm())) return;
+      const std::string path = pieces_.keep_stopped_consolidation(piece, chosen, streams(), state);
+      logger_->info("consolidation of {}: kept at step {} in {} (--resume continues from it)", name,
+                    chosen.step_count(), path);
+    };
+    result.relaxation =
+        consolidate(chosen, config_, rate_, logger_,
+                    {.stoppable = true, .resume = stopped ? &stopped->state : nullptr, .keep = keep});
     consolidation_seconds_ += result.relaxation.seconds;
     if (result.relaxation.interrupted) {
       const std::string path =

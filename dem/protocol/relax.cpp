@@ -72,10 +72,17 @@ Relaxation relax_to_equilibrium(Simulation& simulation, const EquilibriumConfig&
   };
   // Checked at the control updates where the state above says all there is to continue from.
   const auto stop_here = [&](const std::optional<Fire>& minimiser) {
+    const auto record = [&] {
+      state.steps = phase.steps();
+      state.memory = phase.memory();
+      state.fire = minimiser ? std::optional<FireState>(minimiser->state()) : std::nullopt;
+    };
+    if (start.keep) {
+      record();
+      start.keep(state);
+    }
     if (!start.stoppable || !stop_requested(simulation.comm(), simulation.step_count())) return false;
-    state.steps = phase.steps();
-    state.memory = phase.memory();
-    state.fire = minimiser ? std::optional<FireState>(minimiser->state()) : std::nullopt;
+    record();
     phase.suspend();
     return true;
   };

@@ -16,6 +16,7 @@
 #include "dem/simulation.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -42,6 +43,9 @@ struct RelaxationState {
 struct RelaxationStart {
   bool stoppable = false;                  ///< stop at a control update once stop_requested()
   const RelaxationState* resume = nullptr; ///< continue this one (the simulation is its state)
+  /// Sees the state at every control update where it could stop (outside the verification
+  /// windows): a caller may write it, as a stop would, for a resume after a kill.
+  std::function<void(const RelaxationState&)> keep;
 };
 
 struct Relaxation {

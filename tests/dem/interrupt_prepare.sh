@@ -18,10 +18,7 @@ status=0
 enter_fresh_folder "$work"
 dem=$build/dem/aniso-dem
 export OMPI_MCA_mpi_yield_when_idle=1
-# Two cycles (the first seizes above the target), one consolidation (the tolerance takes it).
-settings=(--set dem.particles.count=200 --set dem.seed=3 --set dem.prepare.cycles=2
-  --set dem.prepare.target_void_ratio=0.3 --set dem.prepare.void_ratio_tolerance=1
-  --set dem.equilibrium.tolerance=1e-3 --set dem.prepare.initial_solid_fraction=0.35)
+two_cycle_prepare
 
 "$dem" prepare "${settings[@]}" --set dem.output_dir=whole --log-level debug >whole.log 2>&1
 steps() { sed -n "s/.*cycle *$1: seized after \([0-9]*\) steps.*/\1/p" whole.log; }

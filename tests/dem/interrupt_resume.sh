@@ -11,13 +11,8 @@ build=$1 work=$2
 shift 2
 rm -rf "$work"
 mkdir -p "$work/whole" "$work/cut"
-settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycles=1
-          --set dem.prepare.void_ratio_tolerance=1
-          --set dem.equilibrium.tolerance=1e-3 --set dem.equilibrium.verify_steps=2000
-          --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
-          --set dem.equilibrium.at_checkpoints=false
-          --set dem.load.final_strain=0.05 --set 'dem.load.checkpoint_strains=[0.002, 0.05]'
-          --set dem.load.history_interval=1e-3 "$@")
+source "$(dirname "$0")/../tools/cli_lib.sh"
+small_continuous_load "$@"
 dem=$build/dem/aniso-dem
 "$dem" prepare "${settings[@]}" --set dem.output_dir="$work" --log-level warn
 "$dem" load "${settings[@]}" --set dem.output_dir="$work/whole" --input "$work/prepared.h5" --log-level warn

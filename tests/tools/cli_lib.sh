@@ -19,6 +19,28 @@ small_relaxing_load() {
             --set dem.load.history_interval=1e-3)
 }
 
+# two_cycle_prepare: the array `settings` of 200 spheres prepared in two cycles (the first seizes
+# above the target) and one consolidation (the tolerance takes it): the tests of a stopped or
+# killed prepare.
+two_cycle_prepare() {
+  settings=(--set dem.particles.count=200 --set dem.seed=3 --set dem.prepare.cycles=2
+            --set dem.prepare.target_void_ratio=0.3 --set dem.prepare.void_ratio_tolerance=1
+            --set dem.equilibrium.tolerance=1e-3 --set dem.prepare.initial_solid_fraction=0.35)
+}
+
+# small_continuous_load [--set key=value ...]: the array `settings` of 200 spheres prepared in one
+# fast cycle and loaded to 5% without relaxed checkpoints (at 0.2% and 5%), history every 0.1%:
+# the tests of a stopped or killed load; further arguments are appended.
+small_continuous_load() {
+  settings=(--set dem.particles.count=200 --set dem.seed=5 --set dem.prepare.cycles=1
+            --set dem.prepare.void_ratio_tolerance=1
+            --set dem.equilibrium.tolerance=1e-3 --set dem.equilibrium.verify_steps=2000
+            --set dem.prepare.inertial_number=0.05 --set dem.prepare.initial_solid_fraction=0.35
+            --set dem.equilibrium.at_checkpoints=false
+            --set dem.load.final_strain=0.05 --set 'dem.load.checkpoint_strains=[0.002, 0.05]'
+            --set dem.load.history_interval=1e-3 "$@")
+}
+
 # expect_exit CODE NAME PATTERN COMMAND...: runs COMMAND with its output in NAME.log; unless it
 # exits CODE with a line matching PATTERN (grep basic regex), prints the log and sets status=1.
 expect_exit() {
