@@ -1,6 +1,7 @@
 #include "dem/commands.hpp"
 
 #include "common/error.hpp"
+#include "common/keep_clock.hpp"
 #include "common/output_folder.hpp"
 #include "common/stop_request.hpp"
 #include "dem/io/checkpoint.hpp"
@@ -19,6 +20,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
+#include <memory>
 
 namespace aniso::dem {
 namespace {
@@ -65,17 +68,51 @@ std::optional<io::InterruptedRelaxation> interrupted_input(const std::string& co
   return interrupted;
 }
 
-// A relax or consolidate stopped on SIGTERM: its state beside `output`, from which the same
-// command with --resume continues to the bits of an uninterrupted run; exit 143.
-int stop_relaxation(const CommandContext& context, const Simulation& simulation, const std::string& command,
-                    const io::CheckpointLabels& labels, const h5::Provenance& provenance,
-                    const std::string& output, const protocol::RelaxationState& state) {
+// The state of a relax or consolidate in progress, beside `output` (`_interrupted` before the
+// extension), from which the same command with --resume continues to the bits of an
+// uninterrupted run; returns its path.
+std::string write_relaxation_state(const Simulation& simulation, const std::string& command,
+                                   const io::CheckpointLabels& labels, const h5::Provenance& provenance,
+                                   const std::string& output, const protocol::RelaxationState& state) {
   const std::string path = io::interrupted_path(output);
   io::InterruptedRelaxation interrupted;
   interrupted.command = command;
   interrupted.purpose = command;
   interrupted.state = state;
   io::write_interrupted_checkpoint(path, simulation, labels, provenance, &interrupted);
+  return path;
+}
+
+// What a relax or consolidate keeps every options.keep_every_minutes (KeepClock): its state, as a
+// SIGTERM stop writes it. `kept` is set once it has written.
+std::function<void(const protocol::RelaxationState&)>
+keep_relaxation(const CommandContext& context, const Simulation& simulation, const std::string& command,
+                const io::CheckpointLabels& labels, const h5::Provenance& provenance,
+                const std::string& output, const RelaxOptions& options, bool& kept) {
+  auto clock = std::make_shared<KeepClock>(60.0 * options.keep_every_minutes);
+  return [&, clock, command, output](const protocol::RelaxationState& state) {
+    if (!clock->due(simulation.comm())) return;
+    const std::string path = write_relaxation_state(simulation, command, labels, provenance, output, state);
+    kept = true;
+    context.logger->info(
+        "{}: kept at step {} ({} steps relaxed) in {}; after a kill, continue with --input {} "
+        "--output {} --resume",
+        command, simulation.step_count(), state.steps, path, path, output);
+  };
+}
+
+// A finished relax or consolidate removes the state it kept (a SIGTERM stop's stays with the user).
+void remove_kept_state(const CommandContext& context, const std::string& output, bool kept) {
+  if (!kept || !context.comm.is_root()) return;
+  std::error_code ignored; // a leftover is only an older state of a finished run
+  std::filesystem::remove(io::interrupted_path(output), ignored);
+}
+
+// A relax or consolidate stopped on SIGTERM: its state beside `output`; exit 143.
+int stop_relaxation(const CommandContext& context, const Simulation& simulation, const std::string& command,
+                    const io::CheckpointLabels& labels, const h5::Provenance& provenance,
+                    const std::string& output, const protocol::RelaxationState& state) {
+  const std::string path = write_relaxation_state(simulation, command, labels, provenance, output, state);
   context.logger->warn("{}: stopped on SIGTERM at step {} ({} steps relaxed): wrote {}; continue with "
                        "--input {} --output {} --resume",
                        command, simulation.step_count(), state.steps, path, path, output);
@@ -226,7 +263,7 @@ int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, co
 }
 
 int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-                    const std::string& output, bool resume) {
+                    const std::string& output, const RelaxOptions& options) {
   namespace fs = std::filesystem;
   const auto start = Clock::now();
   require_input(
@@ -236,7 +273,7 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
   if (!folder.empty()) create_output_folder(folder.string());
   const auto provenance = provenance_of(context, "consolidate");
   const DemConfig& config = context.config;
-  const auto interrupted = interrupted_input("consolidate", input, resume);
+  const auto interrupted = interrupted_input("consolidate", input, options.resume);
   Simulation simulation = io::from_checkpoint(checkpoint, input, context.comm);
   const double p_before = mean_stress_compression_positive(simulation.stress());
   const StateMeasures before = simulation.measure();
@@ -246,10 +283,14 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
                                       config.particles.density, config.prepare.confining_pressure);
   if (!interrupted) protocol::with_loading_contacts(simulation, config, rate);
   install_stop_handler();
-  const protocol::Relaxation relaxed = protocol::consolidate(
-      simulation, config, rate, context.logger,
-      {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr, .keep = {}});
   const io::CheckpointLabels labels{checkpoint.rng_state, {}};
+  bool kept = false;
+  const protocol::Relaxation relaxed =
+      protocol::consolidate(simulation, config, rate, context.logger,
+                            {.stoppable = true,
+                             .resume = interrupted ? &interrupted->state : nullptr,
+                             .keep = keep_relaxation(context, simulation, "consolidate", labels, provenance,
+                                                     output, options, kept)});
   if (relaxed.interrupted)
     return stop_relaxation(context, simulation, "consolidate", labels, provenance, output,
                            *relaxed.interrupted);
@@ -259,6 +300,7 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
     const ScopedSection writing(writing_times, 0);
     io::write_checkpoint(output, simulation, labels, provenance);
   }
+  remove_kept_state(context, output, kept);
   const StateMeasures m = simulation.measure();
   context.logger->info(
       "consolidate of '{}': {} steps ({} verifying, {} windows left), p {:.6g} -> {:.6g} Pa, "
@@ -278,7 +320,7 @@ int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpo
 // the probes' stiffness assumes (paper section 4), from a checkpoint written at OVAL's looser
 // increment tolerance (docs/paper-comparison.md, section 4).
 int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-              const std::string& output, bool resume) {
+              const std::string& output, const RelaxOptions& options) {
   namespace fs = std::filesystem;
   const auto start = Clock::now();
   require_input(
@@ -289,16 +331,19 @@ int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, c
   const fs::path folder = fs::path(output).parent_path();
   if (!folder.empty()) create_output_folder(folder.string());
   const auto provenance = provenance_of(context, "relax");
-  const auto interrupted = interrupted_input("relax", input, resume);
+  const auto interrupted = interrupted_input("relax", input, options.resume);
   Simulation simulation = io::from_checkpoint(checkpoint, input, context.comm);
   const auto void_ratio = [&] { return simulation.cell().volume() / simulation.solid_volume() - 1.0; };
   const double p_before = mean_stress_compression_positive(simulation.stress());
   const double e_before = void_ratio();
   install_stop_handler();
+  const io::CheckpointLabels labels{checkpoint.rng_state, checkpoint.run_id};
+  bool kept = false;
   const protocol::Relaxation relaxed = protocol::relax_to_equilibrium(
       simulation, context.config.equilibrium, context.config.equilibrium.max_steps, context.logger, "relax",
-      {.stoppable = true, .resume = interrupted ? &interrupted->state : nullptr, .keep = {}});
-  const io::CheckpointLabels labels{checkpoint.rng_state, checkpoint.run_id};
+      {.stoppable = true,
+       .resume = interrupted ? &interrupted->state : nullptr,
+       .keep = keep_relaxation(context, simulation, "relax", labels, provenance, output, options, kept)});
   if (relaxed.interrupted)
     return stop_relaxation(context, simulation, "relax", labels, provenance, output, *relaxed.interrupted);
   SectionTimes writing_times({"output"});
@@ -307,6 +352,7 @@ int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, c
     const ScopedSection writing(writing_times, 0);
     result = io::write_checkpoint(output, simulation, labels, provenance, io::relaxation_record(relaxed));
   }
+  remove_kept_state(context, output, kept);
   context.logger->info(
       "relax of '{}': {} steps ({} verifying, {} windows left), p {:.6g} -> {:.6g} Pa, void ratio {:.5f} -> "
       "{:.5f}, unbalanced-force ratio {:.2e} -> {:.2e}, kinetic/elastic {:.2e}; wrote {}",

@@ -58,18 +58,26 @@ struct HoldOptions {
 int run_hold(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
              const HoldOptions& options);
 
+struct RelaxOptions {
+  bool resume = false; ///< `input` is the _interrupted file of a stopped or killed run
+  /// How often the relaxation's state is kept as that file [min of wall time]; 0: at every
+  /// control update.
+  double keep_every_minutes = 20;
+};
+
 /// relax: the checkpoint relaxed at its own loading control to the verified equilibrium of
 /// dem.equilibrium, written to `output` (never the input). On SIGTERM it writes its state to
-/// `output` with _interrupted before the extension and exits 143; `resume` continues from such
-/// a file (`input`) to the bits of an uninterrupted run.
+/// `output` with _interrupted before the extension and exits 143, and it keeps its state there
+/// every options.keep_every_minutes (removed when it ends); options.resume continues from such a
+/// file (`input`) to the bits of an uninterrupted run.
 int run_relax(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-              const std::string& output, bool resume = false);
+              const std::string& output, const RelaxOptions& options);
 
 /// consolidate: an assembly from another code (aniso-dem import) consolidated isotropically to
 /// dem.prepare.confining_pressure with the loading's contacts and relaxed to the verified
 /// equilibrium, written to `output` as a prepared assembly that `load` starts from. SIGTERM and
-/// `resume` as for run_relax.
+/// options as for run_relax.
 int run_consolidate(const CommandContext& context, const h5::Checkpoint& checkpoint, const std::string& input,
-                    const std::string& output, bool resume = false);
+                    const std::string& output, const RelaxOptions& options);
 
 } // namespace aniso::dem

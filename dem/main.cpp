@@ -103,16 +103,16 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   dem::LoadOptions load_options;
   relax->add_option("--input", input, "checkpoint to relax (HDF5)")->required();
   relax->add_option("--output", output, "relaxed checkpoint to write (HDF5; not the input)")->required();
-  bool resume_relaxation = false; // relax and consolidate: continue one stopped on SIGTERM
-  relax->add_flag("--resume", resume_relaxation,
-                  "continue from the _interrupted file of a relax stopped on SIGTERM");
+  dem::RelaxOptions relax_options; // relax and consolidate
+  relax->add_flag("--resume", relax_options.resume,
+                  "continue from the _interrupted file of a relax stopped on SIGTERM or killed");
   relax->fallthrough();
   consolidate->add_option("--input", input, "checkpoint to consolidate, e.g. from aniso-dem import (HDF5)")
       ->required();
   consolidate->add_option("--output", output, "prepared assembly to write (HDF5; must not exist)")
       ->required();
-  consolidate->add_flag("--resume", resume_relaxation,
-                        "continue from the _interrupted file of a consolidate stopped on SIGTERM");
+  consolidate->add_flag("--resume", relax_options.resume,
+                        "continue from the _interrupted file of a consolidate stopped on SIGTERM or killed");
   consolidate->fallthrough();
   hold->add_option("--input", input, "checkpoint to hold (HDF5)")->required();
   hold->add_option("--steps", hold_options.steps, "time steps to hold")
@@ -148,6 +148,15 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
                    "prepare killed without SIGTERM loses no more (0: at every control update)")
       ->check(keep_minutes)
       ->capture_default_str();
+  for (CLI::App* relaxing : {relax, consolidate}) {
+    relaxing
+        ->add_option(
+            "--keep-every", relax_options.keep_every_minutes,
+            "keep the relaxation's state as the _interrupted file every MINUTES of wall time, so that "
+            "a run killed without SIGTERM loses no more (0: at every control update)")
+        ->check(keep_minutes)
+        ->capture_default_str();
+  }
   load->add_option("--keep-every", load_options.keep_every_minutes,
                    "keep the loading's state as load_interrupted.h5 (with the history) every MINUTES of wall "
                    "time, so that a load killed without SIGTERM loses no more (0: at every control update)")
@@ -197,9 +206,8 @@ int run_dem(int argc, char** argv, const aniso::mpi::Comm& comm) {
   if (hold->parsed()) return dem::run_hold(context, *checkpoint, input, hold_options);
   if (import->parsed())
     return dem::interop::run_import(import_options, config, reader, context.command_line, logger, comm);
-  if (relax->parsed()) return dem::run_relax(context, *checkpoint, input, output, resume_relaxation);
-  if (consolidate->parsed())
-    return dem::run_consolidate(context, *checkpoint, input, output, resume_relaxation);
+  if (relax->parsed()) return dem::run_relax(context, *checkpoint, input, output, relax_options);
+  if (consolidate->parsed()) return dem::run_consolidate(context, *checkpoint, input, output, relax_options);
   if (prepare->parsed()) return dem::run_prepare(context, prepare_options);
   return dem::run_load(context, *checkpoint, input, load_options);
 }

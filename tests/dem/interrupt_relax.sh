@@ -6,7 +6,8 @@
 # stop comes from ANISO_TEST_STOP_AT_STEP (common/stop_request.hpp), acted on at the first control
 # update from that step on: relax is stopped in its verification window, consolidate while
 # minimising and relax with dem.equilibrium.kinetic_growth in the escape after a window it left,
-# where the uninterrupted runs' debug logs place them.
+# where the uninterrupted runs' debug logs place them. Killed with SIGKILL instead, relax resumes
+# from the state it kept (--keep-every).
 #
 # usage: interrupt_relax.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -60,6 +61,19 @@ NAME=relax_kinetic interrupted 1 relax load/load_000.h5 "relax" escape --set dem
   --set dem.equilibrium.kinetic_growth=2
 h5dump -a /relaxation/stage cut/relax_kinetic_interrupted.h5 | grep -q '"escaping"' ||
   { echo "FAIL: the file stopped in the escape does not say so (/relaxation stage)"; status=1; }
+
+# Killed outright (SIGKILL) once it has kept its state (--keep-every 0.001: every 0.06 s), relax
+# resumes from the file it kept to the same bits; a run that kept and finished removes that file.
+relaxing=(--input load/load_000.h5 --set dem.equilibrium.tolerance=1e-3 --keep-every 0.001)
+"$dem" relax "${relaxing[@]}" --output kept/relax.h5 >relax-kept.log 2>&1
+grep -q "relax: kept at step [0-9]* ([0-9]* steps relaxed) in kept/relax_interrupted.h5" relax-kept.log ||
+  { echo "FAIL: relax --keep-every 0.001 kept nothing:"; tail relax-kept.log; status=1; }
+[ -e kept/relax_interrupted.h5 ] && { echo "FAIL: the finished relax left the state it kept"; status=1; }
+expect_same_state "relax keeping its state" whole/relax.h5 kept/relax.h5
+kill_when_written killed/relax_interrupted.h5 relax-killed.log "$dem" relax "${relaxing[@]}" --output killed/relax.h5
+"$dem" relax --input killed/relax_interrupted.h5 --output killed/relax.h5 --resume \
+  --set dem.equilibrium.tolerance=1e-3 --log-level warn
+expect_same_state "relax killed and resumed from what it kept" whole/relax.h5 killed/relax.h5
 
 # A fresh run refuses a file stopped mid-relaxation (its control is the relaxation's), and a
 # resume refuses a file that is not one.
