@@ -15,7 +15,9 @@ usage:
                                        written there as <stage>.json, rewritten only when they change
   campaign.py resources CONFIG         the SLURM resources of [workflow.resources] as JSON, validated
   campaign.py status OUT N             what the run OUT has written so far, per kind of step: reads the job
-                                       plan (`make slurm-plan` lines) on stdin; N is the number of checkpoints
+                                       plan (`make slurm-plan` lines) on stdin; N is the number of checkpoints;
+                                       an unfinished prepare lists its kept pieces, an unfinished load the
+                                       strain its history reaches
   campaign.py realisation CONFIG K OUT writes OUT, the config of realisation K (1, 2, ...) of CONFIG:
                                        CONFIG itself for K = 1, else with dem.seed raised by K - 1
                                        (make paper REALISATIONS=N); rewritten only when it changes
@@ -64,6 +66,7 @@ uncovered) and that is newer than prepared.h5 and SETTINGS; where the checkpoint
 newest of them; otherwise it starts from prepared.h5, with --overwrite
 when files of an earlier (stale) loading run are there.
 """
+import csv
 import json
 import os
 import re
@@ -402,14 +405,57 @@ def run_status(out, n_checkpoints, plan_lines):
         counts[2] += done_tasks
         counts[3] += tasks
     dem = os.path.join(out, "dem")
-    written = [n for n in (os.listdir(dem) if os.path.isdir(dem) else []) if re.fullmatch(r"load_\d{3,}\.h5", n)]
+    names = os.listdir(dem) if os.path.isdir(dem) else []
+    written = [n for n in names if re.fullmatch(r"load_\d{3,}\.h5", n)]
     lines = [f"{out}:"]
     for kind, (done, steps, tasks_done, tasks) in kinds.items():
         detail = f" ({tasks_done}/{tasks} tasks)" if tasks > steps else ""
         if kind == "load":
             detail = f" ({len(written)} of {n_checkpoints} checkpoints written)"
+            strain = history_strain(dem) if done < steps else None
+            if strain is not None:
+                detail = detail[:-1] + f", the history at strain {100 * strain:.3g}%)"
+        if kind == "prepare" and done < steps:
+            detail = prepare_pieces(names)
         lines.append(f"  {kind:<14} {done}/{steps}{detail}")
     return lines
+
+
+def history_strain(dem):
+    """The compressive strain -eps11 of the last row of a load's history.csv (written with history.h5,
+    at every checkpoint and kept state), or None when there is none."""
+    try:
+        with open(os.path.join(dem, "history.csv")) as f:
+            last = None
+            for last in csv.DictReader(f):
+                pass
+    except OSError:
+        return None
+    try:
+        return 0.0 - float(last["strain_11"]) if last else None  # 0 - x: no "-0%" at the start
+    except (KeyError, ValueError):
+        return None
+
+
+def prepare_pieces(names):
+    """What an unfinished prepare has kept (its prepare_*.h5 pieces), as ' (kept: ...)' or ''."""
+    pieces = [re.fullmatch(r"prepare_(seized|consolidated)_(\d+)_(\d+)(_interrupted)?\.h5", n) for n in names]
+    pieces = [m for m in pieces if m]
+    if not pieces:
+        return ""
+    finished = [m for m in pieces if not m.group(4)]
+    cycles = {int(m.group(2)) for m in finished if m.group(1) == "seized" and m.group(3) == "0"}
+    refinements = sum(1 for m in finished if m.group(1) == "seized" and m.group(3) != "0")
+    consolidated = sum(1 for m in finished if m.group(1) == "consolidated")
+    parts = [f"{len(cycles)} cycles seized"]
+    if refinements:
+        parts.append(f"{refinements} refinements")
+    parts.append(f"{consolidated} consolidated")
+    in_progress = [m for m in pieces if m.group(4)]
+    for m in in_progress:
+        what = "compaction" if m.group(1) == "seized" else "consolidation"
+        parts.append(f"{what} of cycle {m.group(2)}{'' if m.group(3) == '0' else f' refinement {m.group(3)}'} in progress")
+    return f" (kept: {', '.join(parts)})"
 
 
 def main(argv):

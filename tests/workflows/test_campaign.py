@@ -440,6 +440,24 @@ class StageSettings(unittest.TestCase):
         self.assertEqual(lines["lbm"], "3/3 (9/9 tasks)")
         self.assertEqual(lines["report"], "1/1")
 
+    def test_status_says_where_an_unfinished_prepare_and_load_stand(self):
+        dem = os.path.join(self.out, "dem")
+        os.remove(os.path.join(dem, "prepared.h5"))
+        for name in ["prepare_seized_1_0.h5", "prepare_seized_2_0.h5", "prepare_seized_3_1.h5",
+                     "prepare_consolidated_2_0.h5", "prepare_consolidated_3_0_interrupted.h5"]:
+            touch(os.path.join(dem, name), 2500)
+        os.remove(os.path.join(dem, "load.done"))
+        touch(os.path.join(dem, "load_000.h5"), 2500)
+        with open(os.path.join(dem, "history.csv"), "w") as f:
+            f.write("step,strain_11,p\n0,0,1e5\n10,-0.0012,1e5\n20,-0.00481,1e5\n")
+        status = subprocess.run(["make", "-s", "-C", WORKFLOWS, "status", *self.variables], capture_output=True,
+                                text=True)
+        self.assertEqual(status.returncode, 0, status.stderr)
+        lines = {line.split()[0]: line.split(None, 1)[1] for line in status.stdout.splitlines()[1:]}
+        self.assertEqual(lines["prepare"], "0/1 (kept: 2 cycles seized, 1 refinements, 1 consolidated, "
+                                           "consolidation of cycle 3 in progress)")
+        self.assertEqual(lines["load"], "0/1 (1 of 3 checkpoints written, the history at strain 0.481%)")
+
     def test_a_comment_reruns_nothing(self):
         self.edit("\n# a note on this run\n", 3000)
         self.assertEqual(self.steps(), [])
