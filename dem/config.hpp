@@ -113,7 +113,7 @@ struct EquilibriumConfig {
   /// After this many verification windows left, the relaxation ends unverified at the state the
   /// last window began from (balanced, held for fewer steps; 0: never, it runs to max_steps).
   std::int64_t max_windows = 0;
-  double margin = 0.1;             ///< a verified relaxation first reaches this fraction of the tolerances
+  double margin = 0.01;            ///< a verified relaxation first reaches this fraction of the tolerances
   std::int64_t max_steps = 500000; ///< a relaxation that needs more stops with exit 5
   bool at_checkpoints = true;      ///< relax before writing each load checkpoint
   /// Relax a copy of the loading state for each checkpoint and go on loading from the state
