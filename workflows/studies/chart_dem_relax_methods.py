@@ -5,9 +5,10 @@
 Each prepared assembly (LABEL=PATH) is loaded the way the paper configs loaded before the
 quasi-static mode (OVAL's increments: 1e-4 of strain, each relaxed to an unbalanced-force ratio of
 1e-2, checkpoints unrelaxed) to the largest of STRAINS, writing a checkpoint at each. Every
-checkpoint is then relaxed by `aniso-dem relax` three ways: FIRE relaxing to a tenth of the
-tolerances before its 20,000-step verification (the default), damped (global damping 0.1) relaxing
-to half of them (the former default), and damped relaxing to a tenth. The relaxed (sigma11 - sigma33)/p, void ratio and Z without
+checkpoint is then relaxed by `aniso-dem relax` four ways: FIRE relaxing to a hundredth of the
+tolerances before its 20,000-step verification (the default since 2026-12-08) and to a tenth (the
+default before), damped (global damping 0.1) relaxing to half of them (the default before FIRE),
+and damped relaxing to a tenth. The relaxed (sigma11 - sigma33)/p, void ratio and Z without
 rattlers come from `aniso-fabric series`. Finished runs in WORK are reused; JOBS run side by side.
 
 usage: chart_dem_relax_methods.py BUILD_DIR WORK OUTPUT STRAINS JOBS LABEL=PREPARED.h5...
@@ -26,7 +27,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from runner import main_guarded, run_cached, settings_arguments, stage  # noqa: E402
 
-METHODS = [("FIRE, margin 0.1", "fire_m0.1", ["dem.equilibrium.method=fire", "dem.equilibrium.margin=0.1"]),
+METHODS = [("FIRE, margin 0.01", "fire_m0.01", ["dem.equilibrium.method=fire", "dem.equilibrium.margin=0.01"]),
+           ("FIRE, margin 0.1", "fire_m0.1", ["dem.equilibrium.method=fire", "dem.equilibrium.margin=0.1"]),
            ("damped, margin 0.5", "damped_m0.5", ["dem.equilibrium.method=damped", "dem.equilibrium.margin=0.5"]),
            ("damped, margin 0.1", "damped_m0.1", ["dem.equilibrium.method=damped", "dem.equilibrium.margin=0.1"])]
 LOADING = ["dem.load.increment=1e-4", "dem.load.increment_tolerance=1e-2", "dem.load.quasi_static=false",
@@ -80,7 +82,7 @@ def ratio13(row):
 
 
 def main(build, work, out, strains, jobs, assemblies):
-    # RELAX_METHODS=fire_m0.1,damped_m0.5 runs a subset (the costly ovoids).
+    # RELAX_METHODS=fire_m0.01,fire_m0.1,damped_m0.5 runs a subset (the costly ovoids).
     chosen = os.environ.get("RELAX_METHODS")
     methods = [m for m in METHODS if chosen is None or m[1] in chosen.split(",")]
     rows = []

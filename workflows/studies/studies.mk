@@ -66,7 +66,7 @@ chart-dem-relax-methods: $(CHART_RUN)/seed1/prepared.h5 $(CHART_RUN)/ovoids-0.5/
 	mkdir -p $(CHART_RUN)/relax-methods $(CHART_OUT)
 	$(PYTHON) studies/chart_dem_relax_methods.py $(BIN) $(CHART_RUN)/relax-methods $(CHART_OUT) $(RELAX_STRAINS) 1 \
 	  spheres=$(CHART_RUN)/seed1/prepared.h5
-	RELAX_METHODS=fire_m0.1,damped_m0.5 $(PYTHON) studies/chart_dem_relax_methods.py $(BIN) \
+	RELAX_METHODS=fire_m0.01,fire_m0.1,damped_m0.5 $(PYTHON) studies/chart_dem_relax_methods.py $(BIN) \
 	  $(CHART_RUN)/relax-methods $(CHART_OUT) $(RELAX_STRAINS) 1 ovoids_0.5=$(CHART_RUN)/ovoids-0.5/prepared.h5
 
 chart-dem-quasi-static: $(CHART_RUN)/seed1/prepared.h5 $(CHART_RUN)/seed2/prepared.h5 $(CHART_RUN)/seed3/prepared.h5
